@@ -1,0 +1,91 @@
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "exasph/cases/initial_conditions.hpp"
+#include "exasph/util/error.hpp"
+
+namespace exasph {
+
+// Rotating square patch (SPEC 9.1), CGS units.
+struct SquarePatchParams {
+    int side = 30;            // particles per axis
+    double ng0 = 100;         // target neighbour count, sets h_0
+    double length = 100.0;    // cm
+    double density = 1.0;     // g/cm^3
+    double omega = 5.0;       // rad/s
+    double sound_speed = 3500.0;
+    double dt0 = 1e-6;
+    double t_end = 0.02;      // default end time (s)
+};
+
+// Initial pressure P_0(x', y') = rho L^2 sum_{m,l odd <= 39} -32 w^2 / (m l pi^2)
+//   / ((m pi)^2 + (l pi)^2) sin(m pi x') sin(l pi y'), with x', y' in [0, 1].
+inline double square_patch_pressure(double xs, double ys, const SquarePatchParams& sp) {
+    constexpr int kModes = 20; // m = 1, 3, ..., 39
+    double sx[kModes], sy[kModes];
+    for (int k = 0; k < kModes; ++k) {
+        sx[k] = std::sin((2 * k + 1) * M_PI * xs);
+        sy[k] = std::sin((2 * k + 1) * M_PI * ys);
+    }
+    double sum = 0.0;
+    for (int k = 0; k < kModes; ++k) {
+        double mm = 2 * k + 1;
+        for (int j = 0; j < kModes; ++j) {
+            double ll = 2 * j + 1;
+            double denom = (mm * M_PI) * (mm * M_PI) + (ll * M_PI) * (ll * M_PI);
+            sum += -32.0 * sp.omega * sp.omega / (mm * ll * M_PI * M_PI) / denom * sx[k] * sy[j];
+        }
+    }
+    return sp.density * sp.length * sp.length * sum;
+}
+
+template <class T>
+InitialConditions<T> make_square_patch(const SquarePatchParams& sp) {
+    if (sp.side < 2) throw input_error("square patch: -n must be at least 2");
+    InitialConditions<T> ic;
+    ic.name = "square-patch";
+    ic.dt0 = sp.dt0;
+    ic.t_end = sp.t_end;
+    ic.eos = {EosKind::tait, 5.0 / 3.0, sp.sound_speed};
+    const double half = 0.5 * sp.length;
+    ic.box.lo = {T(-half), T(-half), T(-half)};
+    ic.box.hi = {T(half), T(half), T(half)};
+    ic.box.periodic = {false, false, true};
+
+    const std::uint64_t n1 = static_cast<std::uint64_t>(sp.side);
+    const std::uint64_t n = n1 * n1 * n1;
+    const double dx = sp.length / double(sp.side);
+    const double mass = sp.density * sp.length * sp.length * sp.length / double(n);
+    const double h0 = 0.5 * dx * std::cbrt(3.0 * sp.ng0 / (4.0 * M_PI));
+    auto& ps = ic.particles;
+    ps.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::uint64_t idx = 0; idx < n; ++idx) {
+        std::uint64_t i = idx / (n1 * n1), j = (idx / n1) % n1, k = idx % n1;
+        double x = -half + (double(i) + 0.5) * dx;
+        double y = -half + (double(j) + 0.5) * dx;
+        double z = -half + (double(k) + 0.5) * dx;
+        double vx = sp.omega * y, vy = -sp.omega * x;
+        ps.id[idx] = idx;
+        ps[Field::x][idx] = T(x);
+        ps[Field::y][idx] = T(y);
+        ps[Field::z][idx] = T(z);
+        ps[Field::vx][idx] = T(vx);
+        ps[Field::vy][idx] = T(vy);
+        ps[Field::vz][idx] = T(0);
+        ps[Field::x_m1][idx] = T(x - vx * sp.dt0);
+        ps[Field::y_m1][idx] = T(y - vy * sp.dt0);
+        ps[Field::z_m1][idx] = T(z);
+        ps[Field::h][idx] = T(h0);
+        ps[Field::m][idx] = T(mass);
+        ps[Field::u][idx] = T(0);
+        ps[Field::du_m1][idx] = T(0);
+        ps[Field::rho0][idx] = T(sp.density); // replaced by the measured density at step 0
+        ps[Field::p0][idx] = T(square_patch_pressure((x + half) / sp.length,
+                                                     (y + half) / sp.length, sp));
+    }
+    return ic;
+}
+
+} // namespace exasph

@@ -1,0 +1,97 @@
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+namespace exasph {
+
+// Every particle field, declared once. Sorting, (later) migration, halo exchange, snapshots and
+// checkpoints iterate this list; adding a field means adding one enumerator and one row below.
+enum class Field : std::uint8_t {
+    x, y, z,          // position
+    x_m1, y_m1, z_m1, // position at the previous step (Press scheme, SPEC 7)
+    vx, vy, vz,       // velocity
+    h,                // smoothing length
+    m,                // mass
+    u,                // specific internal energy
+    du_m1,            // du/dt of the previous step (Adams-Bashforth, SPEC 7)
+    rho0,             // reference density of the Tait EOS (SPEC 4), measured at step 0
+    p0,               // background pressure of the Tait EOS (SPEC 4, 9.1)
+    rho,              // density (SPEC 3)
+    omega,            // grad-h term Omega (SPEC 3)
+    p,                // pressure
+    c,                // sound speed
+    c11, c12, c13, c22, c23, c33, // IAD matrix C = tau^-1 (SPEC 5)
+    ax, ay, az,       // acceleration
+    du,               // du/dt
+    vsig_max,         // max_b v^sig_ab (SPEC 6, time step)
+    nc,               // neighbour count within 2h (SPEC 2)
+    count_            // number of fields (not a field)
+};
+
+inline constexpr std::size_t kNumFields = static_cast<std::size_t>(Field::count_);
+
+// Role bits. `state` fields carry information from one step to the next and therefore must be
+// permuted by the SFC sort, migrated, and checkpointed; the others are recomputed every step.
+enum FieldRole : std::uint8_t {
+    kState = 1u << 0,
+    kDerived = 1u << 1,
+    kHalo = 1u << 2,     // needed on halo particles by a later neighbour loop
+    kSnapshot = 1u << 3, // written to snapshots by default
+};
+
+struct FieldInfo {
+    Field field;
+    std::string_view name;
+    std::string_view unit; // symbolic (code units of the case)
+    std::uint8_t roles;
+    std::string_view description;
+};
+
+// clang-format off
+inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
+    {Field::x,        "x",        "length",      kState | kHalo | kSnapshot, "position x"},
+    {Field::y,        "y",        "length",      kState | kHalo | kSnapshot, "position y"},
+    {Field::z,        "z",        "length",      kState | kHalo | kSnapshot, "position z"},
+    {Field::x_m1,     "x_m1",     "length",      kState, "position x at the previous step"},
+    {Field::y_m1,     "y_m1",     "length",      kState, "position y at the previous step"},
+    {Field::z_m1,     "z_m1",     "length",      kState, "position z at the previous step"},
+    {Field::vx,       "vx",       "length/time", kState | kHalo | kSnapshot, "velocity x"},
+    {Field::vy,       "vy",       "length/time", kState | kHalo | kSnapshot, "velocity y"},
+    {Field::vz,       "vz",       "length/time", kState | kHalo | kSnapshot, "velocity z"},
+    {Field::h,        "h",        "length",      kState | kHalo | kSnapshot, "smoothing length"},
+    {Field::m,        "m",        "mass",        kState | kHalo | kSnapshot, "mass"},
+    {Field::u,        "u",        "energy/mass", kState | kSnapshot, "specific internal energy"},
+    {Field::du_m1,    "du_m1",    "energy/mass/time", kState, "du/dt at the previous step"},
+    {Field::rho0,     "rho0",     "mass/length^3", kState, "Tait EOS reference density"},
+    {Field::p0,       "p0",       "pressure",    kState, "Tait EOS background pressure"},
+    {Field::rho,      "rho",      "mass/length^3", kDerived | kHalo | kSnapshot, "density"},
+    {Field::omega,    "omega",    "1",           kDerived | kHalo, "grad-h correction Omega"},
+    {Field::p,        "p",        "pressure",    kDerived | kHalo | kSnapshot, "pressure"},
+    {Field::c,        "c",        "length/time", kDerived | kHalo | kSnapshot, "sound speed"},
+    {Field::c11,      "c11",      "1/length^2",  kDerived | kHalo, "IAD matrix C_11"},
+    {Field::c12,      "c12",      "1/length^2",  kDerived | kHalo, "IAD matrix C_12"},
+    {Field::c13,      "c13",      "1/length^2",  kDerived | kHalo, "IAD matrix C_13"},
+    {Field::c22,      "c22",      "1/length^2",  kDerived | kHalo, "IAD matrix C_22"},
+    {Field::c23,      "c23",      "1/length^2",  kDerived | kHalo, "IAD matrix C_23"},
+    {Field::c33,      "c33",      "1/length^2",  kDerived | kHalo, "IAD matrix C_33"},
+    {Field::ax,       "ax",       "length/time^2", kDerived | kSnapshot, "acceleration x"},
+    {Field::ay,       "ay",       "length/time^2", kDerived | kSnapshot, "acceleration y"},
+    {Field::az,       "az",       "length/time^2", kDerived | kSnapshot, "acceleration z"},
+    {Field::du,       "du",       "energy/mass/time", kDerived | kSnapshot, "du/dt"},
+    {Field::vsig_max, "vsig_max", "length/time", kDerived, "max signal velocity over neighbours"},
+    {Field::nc,       "nc",       "1",           kDerived | kSnapshot, "neighbour count within 2h"},
+}};
+// clang-format on
+
+constexpr const FieldInfo& field_info(Field f) { return kFieldTable[static_cast<std::size_t>(f)]; }
+
+// The table is indexed by the enum: a row out of place is a compile error, not a silent bug.
+constexpr bool field_table_in_order() {
+    for (std::size_t i = 0; i < kNumFields; ++i)
+        if (static_cast<std::size_t>(kFieldTable[i].field) != i) return false;
+    return true;
+}
+static_assert(field_table_in_order(), "kFieldTable rows must follow the Field enum order");
+
+} // namespace exasph

@@ -1,0 +1,84 @@
+#pragma once
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "exasph/particles/field_list.hpp"
+#include "exasph/util/error.hpp"
+
+namespace exasph {
+
+// Structure of arrays: one vector per field of kFieldTable, plus a persistent 64-bit id.
+// Invariant: every field vector and `id` have size() elements.
+template <class T>
+class ParticleSet {
+  public:
+    using value_type = T;
+
+    std::size_t size() const { return id.size(); }
+
+    void resize(std::size_t n) {
+        for (auto& f : fields_) f.resize(n);
+        id.resize(n);
+    }
+
+    std::vector<T>& operator[](Field f) { return fields_[static_cast<std::size_t>(f)]; }
+    const std::vector<T>& operator[](Field f) const { return fields_[static_cast<std::size_t>(f)]; }
+    T* data(Field f) { return (*this)[f].data(); }
+    const T* data(Field f) const { return (*this)[f].data(); }
+
+    // Reorders all fields whose role matches `roles` (and the ids): new[i] = old[order[i]].
+    // Derived fields are recomputed every step and need no permutation.
+    void permute(const std::vector<std::uint32_t>& order, std::uint8_t roles = kState) {
+        std::vector<T> scratch(order.size());
+        for (const auto& info : kFieldTable) {
+            if (!(info.roles & roles)) continue;
+            auto& f = (*this)[info.field];
+            gather(f, order, scratch);
+            f.swap(scratch);
+        }
+        std::vector<std::uint64_t> new_id(order.size());
+        gather(id, order, new_id);
+        id.swap(new_id);
+    }
+
+    // Checks the invariants of the state: sizes agree, state values finite, m > 0, h > 0.
+    // Throws Error naming the first offending particle.
+    void validate() const {
+        for (const auto& f : fields_)
+            if (f.size() != size()) throw Error("particle set: field sizes disagree");
+        for (const auto& info : kFieldTable) {
+            if (!(info.roles & kState)) continue;
+            const auto& f = (*this)[info.field];
+            for (std::size_t i = 0; i < size(); ++i)
+                if (!std::isfinite(f[i]))
+                    throw Error("particle " + std::to_string(id[i]) + ": field " +
+                                std::string(info.name) + " is not finite");
+        }
+        for (Field f : {Field::m, Field::h}) {
+            const auto& v = (*this)[f];
+            for (std::size_t i = 0; i < size(); ++i)
+                if (!(v[i] > T(0)))
+                    throw Error("particle " + std::to_string(id[i]) + ": field " +
+                                std::string(field_info(f).name) + " must be positive");
+        }
+    }
+
+    std::vector<std::uint64_t> id;
+
+  private:
+    template <class V>
+    static void gather(const std::vector<V>& src, const std::vector<std::uint32_t>& order,
+                       std::vector<V>& dst) {
+        dst.resize(order.size());
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < order.size(); ++i) dst[i] = src[order[i]];
+    }
+
+    std::array<std::vector<T>, kNumFields> fields_;
+};
+
+} // namespace exasph

@@ -1,0 +1,27 @@
+#pragma once
+#include <array>
+#include <cstddef>
+
+#include "exasph/particles/field_list.hpp"
+#include "exasph/particles/particle_set.hpp"
+#include "exasph/util/annotate.hpp"
+
+namespace exasph {
+
+// Raw pointers to every field of a ParticleSet: what kernels receive instead of containers, so
+// that the same kernel runs on host memory and (later) device memory.
+template <class T>
+struct ParticleView {
+    T* ptr[kNumFields];
+
+    EXASPH_HD T* operator[](Field f) const { return ptr[static_cast<std::size_t>(f)]; }
+};
+
+template <class T>
+ParticleView<T> make_view(ParticleSet<T>& ps) {
+    ParticleView<T> v{};
+    for (std::size_t i = 0; i < kNumFields; ++i) v.ptr[i] = ps.data(static_cast<Field>(i));
+    return v;
+}
+
+} // namespace exasph

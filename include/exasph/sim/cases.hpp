@@ -1,0 +1,30 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "exasph/cases/square_patch.hpp"
+#include "exasph/sim/config.hpp"
+#include "exasph/util/error.hpp"
+
+namespace exasph {
+
+// Names accepted by --init.
+inline const std::vector<std::string>& case_names() {
+    static const std::vector<std::string> names{"square-patch"};
+    return names;
+}
+
+template <class T>
+InitialConditions<T> make_case(const Config& cfg) {
+    if (cfg.init == "square-patch") {
+        SquarePatchParams sp;
+        sp.side = cfg.side;
+        sp.ng0 = cfg.ng0;
+        return make_square_patch<T>(sp);
+    }
+    std::string known;
+    for (const auto& n : case_names()) known += (known.empty() ? "" : ", ") + n;
+    throw input_error("--init: unknown case '" + cfg.init + "' (known: " + known + ")");
+}
+
+} // namespace exasph

@@ -1,0 +1,139 @@
+#pragma once
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "exasph/build_info.hpp"
+#include "exasph/sim/cases.hpp"
+#include "exasph/sim/simulation.hpp"
+#include "exasph/util/memory.hpp"
+
+namespace exasph {
+
+inline std::string strprintf(const char* fmt, ...) {
+    char buf[512];
+    va_list ap;
+    va_start(ap, fmt);
+    std::vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    return buf;
+}
+
+inline int thread_count() {
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
+// diagnostics.csv: one row per step with the SPEC 10 quantities and the phase times.
+class DiagnosticsCsv {
+  public:
+    explicit DiagnosticsCsv(const std::filesystem::path& path) : out_(path) {
+        if (!out_) throw Error("cannot write " + path.string(), 3);
+        out_ << "step,time,dt,n,ekin,eint,epot,etot,px,py,pz,lx,ly,lz,nc_min,nc_mean,nc_max";
+        for (auto name : kPhaseNames) out_ << ",t_" << name;
+        out_ << "\n";
+    }
+    void write(const Diagnostics& d, const std::array<double, kNumPhases>& phases) {
+        out_ << strprintf("%lld,%.17g,%.17g,%llu", (long long)d.step, d.time, d.dt,
+                          (unsigned long long)d.n);
+        for (double v : {d.ekin, d.eint, d.epot, d.etot, d.momentum[0], d.momentum[1],
+                         d.momentum[2], d.angular_momentum[0], d.angular_momentum[1],
+                         d.angular_momentum[2], d.nc_min, d.nc_mean, d.nc_max})
+            out_ << strprintf(",%.17g", v);
+        for (double t : phases) out_ << strprintf(",%.6e", t);
+        out_ << "\n";
+        out_.flush();
+        if (!out_) throw Error("write to diagnostics.csv failed", 3);
+    }
+
+  private:
+    std::ofstream out_;
+};
+
+// Runs a whole simulation as configured, printing the header, one row per step and a summary.
+// Returns the process exit code; user errors are thrown as Error.
+inline int run(const Config& cfg, std::ostream& out) {
+#ifdef _OPENMP
+    if (cfg.threads > 0) omp_set_num_threads(cfg.threads);
+#endif
+    auto ic = make_case<double>(cfg);
+    const double t_end = cfg.t_end > 0 ? cfg.t_end : (cfg.steps < 0 ? ic.t_end : -1.0);
+    const std::size_t n = ic.particles.size();
+    std::filesystem::path dir(cfg.out_dir);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw Error("--out: cannot create directory '" + cfg.out_dir + "': " + ec.message(), 3);
+    DiagnosticsCsv csv(dir / "diagnostics.csv");
+
+    out << "exasph " << kVersion << " (" << kBuildInfo << ")\n";
+    out << strprintf("case %s, %zu particles, %d threads, ng0 %g, ngmax %d, sinc n %g, "
+                     "courant %g, alpha %g\n",
+                     cfg.init.c_str(), n, thread_count(), cfg.ng0, cfg.ngmax, cfg.kernel_exponent,
+                     cfg.courant, cfg.alpha);
+    out << (t_end > 0 ? strprintf("until t = %g", t_end) : std::string())
+        << (t_end > 0 && cfg.steps >= 0 ? " or " : "")
+        << (cfg.steps >= 0 ? strprintf("%lld steps", (long long)cfg.steps) : std::string())
+        << ", output in " << cfg.out_dir << "/\n";
+    out << strprintf("%6s %12s %11s %16s %16s %9s %9s\n", "step", "t", "dt", "E_tot", "L_z",
+                     "s/step", "ETA s");
+
+    Simulation<double> sim(cfg, std::move(ic));
+    if (t_end > 0) sim.set_end_time(t_end);
+    const double wall0 = wall_seconds();
+    bool warned_ngmax = false;
+    auto done = [&] {
+        if (cfg.steps >= 0 && sim.step_count() >= cfg.steps) return true;
+        return t_end > 0 && sim.time() >= t_end * (1 - 1e-12);
+    };
+    while (!done()) {
+        double w0 = wall_seconds();
+        sim.step();
+        double wstep = wall_seconds() - w0;
+        const auto& d = sim.diagnostics();
+        if (!std::isfinite(d.etot)) {
+            sim.particles().validate(); // names the particle when a state field went bad
+            throw Error("total energy is not finite at step " + std::to_string(d.step));
+        }
+        if (!warned_ngmax && sim.max_list_length() > std::uint32_t(cfg.ngmax)) {
+            out << "warning: a particle has " << sim.max_list_length()
+                << " neighbours, more than ngmax = " << cfg.ngmax
+                << "; lists were enlarged (no truncation)\n";
+            warned_ngmax = true;
+        }
+        double mean_wall = (wall_seconds() - wall0) / double(sim.step_count());
+        std::string eta = t_end > 0 && d.dt > 0
+                              ? strprintf("%9.1f", (t_end - d.time) / d.dt * mean_wall)
+                              : strprintf("%9s", "-");
+        out << strprintf("%6lld %12.6e %11.4e %16.9e %16.9e %9.3f ", (long long)d.step, d.time,
+                         d.dt, d.etot, d.angular_momentum[2], wstep)
+            << eta << "\n";
+        csv.write(d, sim.phase_times());
+    }
+    const double wall = wall_seconds() - wall0;
+    const double steps = double(sim.step_count());
+    const double rate = steps > 0 ? double(n) * steps / wall : 0.0;
+    out << strprintf("done: %lld steps, t = %.6e, wall %.3f s\n", (long long)sim.step_count(),
+                     sim.time(), wall);
+    out << strprintf("particle-steps/s %.4e, per core %.4e (%d threads), peak RSS %.1f B/particle\n",
+                     rate, rate / thread_count(), thread_count(),
+                     double(peak_rss_bytes()) / double(n));
+    out << "seconds per step by phase:";
+    for (std::size_t i = 0; i < kNumPhases; ++i)
+        out << strprintf(" %s %.4f", std::string(kPhaseNames[i]).c_str(),
+                         steps > 0 ? sim.total_phase_times()[i] / steps : 0.0);
+    out << "\n";
+    return 0;
+}
+
+} // namespace exasph

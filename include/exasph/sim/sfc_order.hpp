@@ -1,0 +1,61 @@
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#if defined(_OPENMP) && defined(__GLIBCXX__)
+#include <parallel/algorithm>
+#endif
+
+#include "exasph/particles/particle_set.hpp"
+#include "exasph/sfc/keys.hpp"
+
+namespace exasph {
+
+// On open axes the box is re-fitted to the particles each step so that SFC keys use the full
+// 21-bit resolution; periodic axes keep their period.
+template <class T>
+void fit_open_axes(Box<T>& box, const ParticleSet<T>& ps) {
+    for (int d = 0; d < 3; ++d) {
+        if (box.periodic[d] || ps.size() == 0) continue;
+        const auto& c = ps[static_cast<Field>(static_cast<int>(Field::x) + d)];
+        T lo = std::numeric_limits<T>::max(), hi = std::numeric_limits<T>::lowest();
+#pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi)
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            lo = std::min(lo, c[i]);
+            hi = std::max(hi, c[i]);
+        }
+        T pad = T(1e-6) * std::max(hi - lo, T(1));
+        box.lo[d] = lo - pad;
+        box.hi[d] = hi + pad;
+    }
+}
+
+// Sorts the particles along the space-filling curve and returns the sorted keys. Ties (equal
+// keys) are broken by the current index, so the order is unique and independent of threads.
+template <class T>
+std::vector<std::uint64_t> sort_along_curve(ParticleSet<T>& ps, const Box<T>& box, CurveKind kind) {
+    const std::size_t n = ps.size();
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> ki(n);
+    const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+        ki[i] = {sfc_key(x[i], y[i], z[i], box, kind), static_cast<std::uint32_t>(i)};
+#if defined(_OPENMP) && defined(__GLIBCXX__)
+    __gnu_parallel::sort(ki.begin(), ki.end());
+#else
+    std::sort(ki.begin(), ki.end());
+#endif
+    std::vector<std::uint32_t> order(n);
+    std::vector<std::uint64_t> keys(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        keys[i] = ki[i].first;
+        order[i] = ki[i].second;
+    }
+    ps.permute(order);
+    return keys;
+}
+
+} // namespace exasph

@@ -1,0 +1,53 @@
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/kernel_table.hpp"
+#include "exasph/sph/neighbour_view.hpp"
+#include "exasph/util/box.hpp"
+
+namespace exasph {
+
+template <class T>
+struct DensityResult {
+    T rho;
+    T omega;
+    std::uint32_t nc; // neighbours with r < 2 h_a, self excluded (SPEC 2)
+};
+
+// SPEC 3: rho_a = sum_b m_b W_ab(h_a) including b = a, and the grad-h term
+// Omega_a = 1 - 1/(3 rho_a h_a^3) sum_b m_b (3 w(v) + v w'(v)).
+template <class T>
+EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
+                                        const Box<T>& box, const KernelView<T>& k) {
+    const T* x = p[Field::x];
+    const T* y = p[Field::y];
+    const T* z = p[Field::z];
+    const T* m = p[Field::m];
+    const T ha = p[Field::h][a];
+    const T inv_h = T(1) / ha;
+    const T w0 = k.value(T(0));
+    double rho_sum = m[a] * w0; // w(v) sums, divided by h^3 at the end
+    double dh_sum = m[a] * T(3) * w0;
+    std::uint32_t nc = 0;
+    for (std::uint32_t n = 0; n < nb.count; ++n) {
+        std::uint32_t b = nb.index[n];
+        T dx = box.min_image(x[b] - x[a], 0);
+        T dy = box.min_image(y[b] - y[a], 1);
+        T dz = box.min_image(z[b] - z[a], 2);
+        T r2 = dx * dx + dy * dy + dz * dz;
+        if (r2 >= T(4) * ha * ha) continue;
+        ++nc;
+        T v = std::sqrt(r2) * inv_h;
+        T w = k.value(v);
+        rho_sum += m[b] * w;
+        dh_sum += m[b] * (T(3) * w + v * k.derivative(v));
+    }
+    T h3 = ha * ha * ha;
+    T rho = static_cast<T>(rho_sum) / h3;
+    T omega = T(1) - static_cast<T>(dh_sum) / (T(3) * rho * h3);
+    return {rho, omega, nc};
+}
+
+} // namespace exasph

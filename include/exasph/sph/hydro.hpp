@@ -1,0 +1,95 @@
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "exasph/particles/particle_set.hpp"
+#include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/density_kern.hpp"
+#include "exasph/sph/eos.hpp"
+#include "exasph/sph/iad_kern.hpp"
+#include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/tree/neighbour_search.hpp"
+#include "exasph/util/error.hpp"
+
+// OpenMP drivers of the SPH phases: thin loops over particles calling the pure kernels.
+namespace exasph {
+
+inline constexpr int kHydroChunk = 128;
+
+template <class T>
+NeighbourSpan neighbours_of(const NeighbourLists<T>& nl, std::uint32_t i) {
+    return {nl.list(i), nl.count(i)};
+}
+
+template <class T>
+void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+                     const KernelView<T>& k) {
+    auto p = make_view(ps);
+    const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(dynamic, kHydroChunk)
+    for (std::int64_t i = 0; i < n; ++i) {
+        auto r = density_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k);
+        p[Field::rho][i] = r.rho;
+        p[Field::omega][i] = r.omega;
+        p[Field::nc][i] = T(r.nc);
+    }
+}
+
+template <class T>
+void compute_eos(ParticleSet<T>& ps, const EosParams& eos) {
+    auto p = make_view(ps);
+    const auto n = static_cast<std::int64_t>(ps.size());
+    const T gamma = T(eos.gamma), c0 = T(eos.c0);
+    const bool tait = eos.kind == EosKind::tait;
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+        auto r = tait ? tait_eos(p[Field::rho][i], p[Field::rho0][i], p[Field::p0][i], c0)
+                      : ideal_gas_eos(p[Field::rho][i], p[Field::u][i], gamma);
+        p[Field::p][i] = r.p;
+        p[Field::c][i] = r.c;
+    }
+}
+
+// Throws Error naming a particle whose tau is singular (SPEC 5).
+template <class T>
+void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+                 const KernelView<T>& k) {
+    auto p = make_view(ps);
+    const auto n = static_cast<std::int64_t>(ps.size());
+    std::int64_t first_singular = n;
+#pragma omp parallel for schedule(dynamic, kHydroChunk) reduction(min : first_singular)
+    for (std::int64_t i = 0; i < n; ++i) {
+        auto r = iad_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k);
+        if (r.singular && i < first_singular) first_singular = i;
+        p[Field::c11][i] = r.c11;
+        p[Field::c12][i] = r.c12;
+        p[Field::c13][i] = r.c13;
+        p[Field::c22][i] = r.c22;
+        p[Field::c23][i] = r.c23;
+        p[Field::c33][i] = r.c33;
+    }
+    if (first_singular < n)
+        throw Error("IAD matrix tau is singular for particle id " +
+                    std::to_string(ps.id[first_singular]) + " (" +
+                    std::to_string(nl.count(std::uint32_t(first_singular))) +
+                    " neighbours): too few or coplanar neighbours");
+}
+
+template <class T>
+void compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+                             const KernelView<T>& k, T alpha) {
+    auto p = make_view(ps);
+    const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(dynamic, kHydroChunk)
+    for (std::int64_t i = 0; i < n; ++i) {
+        auto r = momentum_energy_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box,
+                                      k, alpha);
+        p[Field::ax][i] = r.ax;
+        p[Field::ay][i] = r.ay;
+        p[Field::az][i] = r.az;
+        p[Field::du][i] = r.du;
+        p[Field::vsig_max][i] = r.vsig_max;
+    }
+}
+
+} // namespace exasph

@@ -1,0 +1,89 @@
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/kernel_table.hpp"
+#include "exasph/sph/neighbour_view.hpp"
+#include "exasph/util/box.hpp"
+
+namespace exasph {
+
+template <class T>
+struct MomentumEnergyResult {
+    T ax, ay, az;
+    T du;
+    T vsig_max;
+};
+
+// C (x) d for the symmetric IAD matrix of particle i.
+template <class T>
+struct IadProduct {
+    T x, y, z;
+};
+template <class T>
+EXASPH_HD IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T dx, T dy, T dz) {
+    T c11 = p[Field::c11][i], c12 = p[Field::c12][i], c13 = p[Field::c13][i];
+    T c22 = p[Field::c22][i], c23 = p[Field::c23][i], c33 = p[Field::c33][i];
+    return {c11 * dx + c12 * dy + c13 * dz, c12 * dx + c22 * dy + c23 * dz,
+            c13 * dx + c23 * dy + c33 * dz};
+}
+
+// SPEC 6 with IAD gradients (SPEC 5), over a symmetric neighbour list (r_ab < 2 max(h_a, h_b)),
+// which makes every pair's contribution appear with opposite sign in b's sum: momentum is
+// conserved to round-off and energy up to time-integration error.
+//   A_ab(h_a) = C_a (x_b - x_a) W_ab(h_a),  A_ab(h_b) = C_b (x_b - x_a) W_ab(h_b)
+//   dv_a/dt = -sum_b m_b [P_a/(Om_a rho_a^2) A_ab(h_a) + P_b/(Om_b rho_b^2) A_ab(h_b)]
+//             -1/2 sum_b m_b Pi_ab [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
+//   du_a/dt = P_a/(Om_a rho_a^2) sum_b m_b v_ab . A_ab(h_a)
+//             +1/4 sum_b m_b Pi_ab v_ab . [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
+template <class T>
+EXASPH_HD MomentumEnergyResult<T> momentum_energy_kern(std::uint32_t a, NeighbourSpan nb,
+                                                       const ParticleView<T>& p, const Box<T>& box,
+                                                       const KernelView<T>& k, T alpha) {
+    const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
+    const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
+    const T *h = p[Field::h], *m = p[Field::m], *rho = p[Field::rho];
+    const T *pr = p[Field::p], *c = p[Field::c], *omega = p[Field::omega];
+    const T ha = h[a], inv_ha = T(1) / ha, inv_ha3 = inv_ha * inv_ha * inv_ha;
+    const T rho_a = rho[a], inv_rho_a = T(1) / rho_a;
+    const T pa = pr[a] / (omega[a] * rho_a * rho_a);
+    T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0;
+    for (std::uint32_t n = 0; n < nb.count; ++n) {
+        const std::uint32_t b = nb.index[n];
+        // d = x_b - x_a = -r_ab
+        T dx = box.min_image(x[b] - x[a], 0);
+        T dy = box.min_image(y[b] - y[a], 1);
+        T dz = box.min_image(z[b] - z[a], 2);
+        T r = std::sqrt(dx * dx + dy * dy + dz * dz);
+        T hb = h[b], inv_hb = T(1) / hb;
+        T wa = k.value(r * inv_ha) * inv_ha3;
+        T wb = k.value(r * inv_hb) * inv_hb * inv_hb * inv_hb;
+        IadProduct<T> ca = iad_times(p, a, dx, dy, dz);
+        IadProduct<T> cb = iad_times(p, b, dx, dy, dz);
+        T aax = ca.x * wa, aay = ca.y * wa, aaz = ca.z * wa; // A_ab(h_a)
+        T abx = cb.x * wb, aby = cb.y * wb, abz = cb.z * wb; // A_ab(h_b)
+        T vabx = vx[a] - vx[b], vaby = vy[a] - vy[b], vabz = vz[a] - vz[b];
+        // v_ab . r_ab with r_ab = -d
+        T vr = -(vabx * dx + vaby * dy + vabz * dz);
+        T w_ab = r > T(0) ? vr / r : T(0);
+        T vsig = c[a] + c[b] - T(3) * w_ab;
+        vsig_max = vsig > vsig_max ? vsig : vsig_max;
+        T pi_ab = vr < T(0) ? T(-0.5) * alpha * vsig * w_ab : T(0);
+        T pb = pr[b] / (omega[b] * rho[b] * rho[b]);
+        T inv_rho_b = T(1) / rho[b];
+        T mb = m[b];
+        T gx = aax * inv_rho_a + abx * inv_rho_b; // A(h_a)/rho_a + A(h_b)/rho_b
+        T gy = aay * inv_rho_a + aby * inv_rho_b;
+        T gz = aaz * inv_rho_a + abz * inv_rho_b;
+        T half_pi = T(0.5) * pi_ab;
+        ax -= mb * (pa * aax + pb * abx + half_pi * gx);
+        ay -= mb * (pa * aay + pb * aby + half_pi * gy);
+        az -= mb * (pa * aaz + pb * abz + half_pi * gz);
+        du_p += mb * (vabx * aax + vaby * aay + vabz * aaz);
+        du_av += mb * pi_ab * (vabx * gx + vaby * gy + vabz * gz);
+    }
+    return {ax, ay, az, pa * du_p + T(0.25) * du_av, vsig_max};
+}
+
+} // namespace exasph

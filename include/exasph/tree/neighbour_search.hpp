@@ -1,0 +1,161 @@
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "exasph/tree/octree.hpp"
+#include "exasph/util/box.hpp"
+#include "exasph/util/error.hpp"
+
+namespace exasph {
+
+// Which pairs are neighbours (SPEC 2).
+//  gather:    r_ab < 2 h_a                (enough for density and IAD)
+//  symmetric: r_ab < 2 max(h_a, h_b)      (needed for exact conservation in momentum-energy)
+enum class NeighbourCriterion { gather, symmetric };
+
+// Read-only positions and smoothing lengths for the search.
+template <class T>
+struct SearchView {
+    const T* x;
+    const T* y;
+    const T* z;
+    const T* h;
+};
+
+// Squared minimum-image distance between particles i and j. Shared by the tree search and the
+// brute-force reference so that both decide ties identically.
+template <class T>
+inline T pair_distance2(const SearchView<T>& p, const Box<T>& box, std::uint32_t i, std::uint32_t j) {
+    T dx = box.min_image(p.x[j] - p.x[i], 0);
+    T dy = box.min_image(p.y[j] - p.y[i], 1);
+    T dz = box.min_image(p.z[j] - p.z[i], 2);
+    return dx * dx + dy * dy + dz * dz;
+}
+
+template <class T>
+inline bool is_neighbour(T r2, T hi, T hj, NeighbourCriterion crit) {
+    T hh = crit == NeighbourCriterion::symmetric ? std::max(hi, hj) : hi;
+    return r2 < T(4) * hh * hh;
+}
+
+// Squared minimum-image distance from a point to a node's bounding box, slightly reduced so that
+// pruning is conservative against round-off (a particle on the box face is never pruned).
+template <class T>
+inline T node_distance2(const OctreeNode<T>& nd, const T p[3], const Box<T>& box) {
+    T d2 = 0;
+    for (int d = 0; d < 3; ++d) {
+        T half = T(0.5) * (nd.hi[d] - nd.lo[d]);
+        T centre = T(0.5) * (nd.hi[d] + nd.lo[d]);
+        T dist = std::abs(box.min_image(p[d] - centre, d)) - half * T(1.000000001);
+        if (dist > 0) d2 += dist * dist;
+    }
+    return d2;
+}
+
+// Neighbours of particle i (self excluded), in tree order. Writes at most `cap` indices to `out`
+// and returns the true count, which may exceed `cap`.
+template <class T>
+std::uint32_t find_neighbours(const Octree<T>& tree, const SearchView<T>& p, const Box<T>& box,
+                              NeighbourCriterion crit, std::uint32_t i, std::uint32_t* out,
+                              std::uint32_t cap) {
+    const auto& nodes = tree.nodes();
+    const T pos[3] = {p.x[i], p.y[i], p.z[i]};
+    const T hi = p.h[i];
+    std::uint32_t count = 0;
+    std::uint32_t stack[8 * 64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const auto& nd = nodes[stack[--top]];
+        T reach = T(2) * (crit == NeighbourCriterion::symmetric ? std::max(hi, nd.hmax) : hi);
+        if (node_distance2(nd, pos, box) >= reach * reach) continue;
+        if (nd.first_child >= 0) {
+            for (std::uint32_t c = nd.num_children; c-- > 0;)
+                stack[top++] = static_cast<std::uint32_t>(nd.first_child) + c;
+            continue;
+        }
+        for (std::uint32_t j = nd.begin; j < nd.end; ++j) {
+            if (j == i) continue;
+            if (!is_neighbour(pair_distance2(p, box, i, j), hi, p.h[j], crit)) continue;
+            if (count < cap) out[count] = j;
+            ++count;
+        }
+    }
+    return count;
+}
+
+// The search radius must stay below half of every period for the minimum image to be the only
+// image within reach.
+template <class T>
+void check_periodic_reach(const Box<T>& box, T hmax) {
+    for (int d = 0; d < 3; ++d) {
+        if (box.periodic[d] && T(4) * hmax >= box.length(d))
+            throw Error("smoothing length h = " + std::to_string(hmax) +
+                        " is too large for the periodic box: 2h must be below half the period " +
+                        std::to_string(box.length(d)) + " (use more particles)");
+    }
+}
+
+// Neighbour lists of all particles with a fixed stride. A particle with more neighbours than the
+// stride is never truncated: the stride grows and the search is repeated (reported by the caller
+// through `grew`).
+template <class T>
+class NeighbourLists {
+  public:
+    explicit NeighbourLists(std::uint32_t stride = 150) : stride_(stride) {}
+
+    struct Result {
+        std::uint32_t max_count = 0;
+        bool grew = false;
+    };
+
+    Result build(const Octree<T>& tree, const SearchView<T>& p, const Box<T>& box,
+                 NeighbourCriterion crit, std::uint32_t n) {
+        Result res;
+        check_periodic_reach(box, tree.nodes().empty() ? T(0) : tree.nodes()[0].hmax);
+        for (;;) {
+            count_.resize(n);
+            index_.resize(static_cast<std::size_t>(n) * stride_);
+            std::uint32_t max_count = search_all(tree, p, box, crit);
+            res.max_count = max_count;
+            if (max_count <= stride_) return res;
+            stride_ = (max_count + 15) / 16 * 16;
+            res.grew = true;
+        }
+    }
+
+    std::uint32_t stride() const { return stride_; }
+    std::uint32_t count(std::uint32_t i) const { return count_[i]; }
+    const std::uint32_t* list(std::uint32_t i) const {
+        return index_.data() + static_cast<std::size_t>(i) * stride_;
+    }
+    const std::uint32_t* counts() const { return count_.data(); }
+    const std::uint32_t* indices() const { return index_.data(); }
+
+  private:
+    std::uint32_t search_all(const Octree<T>& tree, const SearchView<T>& p, const Box<T>& box,
+                             NeighbourCriterion crit) {
+        const auto& leaves = tree.leaves();
+        std::uint32_t max_count = 0;
+#pragma omp parallel for schedule(dynamic, 8) reduction(max : max_count)
+        for (std::size_t l = 0; l < leaves.size(); ++l) {
+            const auto& nd = tree.nodes()[leaves[l]];
+            for (std::uint32_t i = nd.begin; i < nd.end; ++i) {
+                std::uint32_t c = find_neighbours(tree, p, box, crit, i,
+                                                  index_.data() + std::size_t(i) * stride_, stride_);
+                count_[i] = std::min(c, stride_);
+                max_count = std::max(max_count, c);
+            }
+        }
+        return max_count;
+    }
+
+    std::uint32_t stride_;
+    std::vector<std::uint32_t> count_;
+    std::vector<std::uint32_t> index_;
+};
+
+} // namespace exasph

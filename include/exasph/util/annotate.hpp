@@ -1,0 +1,8 @@
+#pragma once
+// EXASPH_HD marks a function callable from host and device code. Physics kernels carry it so that
+// the same function serves the OpenMP drivers and (later) the CUDA drivers.
+#if defined(__CUDACC__)
+#define EXASPH_HD __host__ __device__
+#else
+#define EXASPH_HD
+#endif

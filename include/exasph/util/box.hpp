@@ -1,0 +1,45 @@
+#pragma once
+#include <array>
+
+#include "exasph/util/annotate.hpp"
+#include "exasph/util/vec3.hpp"
+
+namespace exasph {
+
+// Axis-aligned simulation box. On a periodic axis [lo, hi) is the period; on an open axis it is
+// just the current bounds of the particles (used to scale SFC keys).
+// Invariant: on periodic axes all owned particles lie in [lo, hi).
+template <class T>
+struct Box {
+    std::array<T, 3> lo{0, 0, 0};
+    std::array<T, 3> hi{1, 1, 1};
+    std::array<bool, 3> periodic{false, false, false};
+
+    EXASPH_HD T length(int axis) const { return hi[axis] - lo[axis]; }
+    EXASPH_HD bool any_periodic() const { return periodic[0] || periodic[1] || periodic[2]; }
+
+    // Minimum image of one coordinate difference. Valid for |d| < period, which holds for two
+    // positions inside the box.
+    EXASPH_HD T min_image(T d, int axis) const {
+        if (!periodic[axis]) return d;
+        T len = hi[axis] - lo[axis];
+        if (d > T(0.5) * len) return d - len;
+        if (d < T(-0.5) * len) return d + len;
+        return d;
+    }
+
+    EXASPH_HD Vec3<T> min_image(Vec3<T> d) const {
+        return {min_image(d.x, 0), min_image(d.y, 1), min_image(d.z, 2)};
+    }
+
+    // Wraps a coordinate into [lo, hi) on a periodic axis; returns the shift applied.
+    EXASPH_HD T wrap_shift(T x, int axis) const {
+        if (!periodic[axis]) return T(0);
+        T len = hi[axis] - lo[axis];
+        if (x >= hi[axis]) return -len;
+        if (x < lo[axis]) return len;
+        return T(0);
+    }
+};
+
+} // namespace exasph
