@@ -11,20 +11,39 @@
 
 namespace {
 
+// Checks that an option's value is a number above (or, with allow_zero, at least) zero, with a
+// message that says so in words.
+CLI::Validator sign_check(bool allow_zero) {
+    return CLI::Validator(
+        [allow_zero](std::string& s) -> std::string {
+            double v = 0;
+            try {
+                std::size_t used = 0;
+                v = std::stod(s, &used);
+                if (used != s.size()) return "'" + s + "' is not a number";
+            } catch (const std::exception&) {
+                return "'" + s + "' is not a number";
+            }
+            if (allow_zero ? v < 0 : v <= 0)
+                return "value " + s + (allow_zero ? " is negative" : " must be positive");
+            return {};
+        },
+        allow_zero ? "NONNEGATIVE" : "POSITIVE");
+}
+
 void add_options(CLI::App& app, exasph::Config& cfg) {
     app.add_option("--init", cfg.init, "Initial conditions: name of a test case")
         ->check(CLI::IsMember(exasph::case_names()))
         ->capture_default_str();
-    app.add_option("-n,--side", cfg.side, "Particles per axis (about n^3 particles)")
+    app.add_option("-n", cfg.side, "Particles per axis (about n^3 particles)")
         ->check(CLI::Range(2, 1000))
         ->capture_default_str();
-    auto* steps = app.add_option("-s,--steps", cfg.steps, "Number of steps to run")
-                      ->check(CLI::NonNegativeNumber);
+    app.add_option("-s,--steps", cfg.steps, "Number of steps to run")
+                      ->check(sign_check(true));
     app.add_option("--t-end", cfg.t_end,
                    "Physical end time; with -s the run stops at whichever comes first "
                    "(default: the case's end time when -s is not given)")
-        ->check(CLI::PositiveNumber);
-    (void)steps;
+        ->check(sign_check(false));
     app.add_option("--out", cfg.out_dir, "Output directory (diagnostics.csv)")
         ->capture_default_str();
     app.add_option("--ng0", cfg.ng0, "Target number of neighbours")

@@ -93,7 +93,7 @@ template <class T>
 void check_periodic_reach(const Box<T>& box, T hmax) {
     for (int d = 0; d < 3; ++d) {
         if (box.periodic[d] && T(4) * hmax >= box.length(d))
-            throw Error("smoothing length h = " + std::to_string(hmax) +
+            throw input_error("smoothing length h = " + std::to_string(hmax) +
                         " is too large for the periodic box: 2h must be below half the period " +
                         std::to_string(box.length(d)) + " (use more particles)");
     }

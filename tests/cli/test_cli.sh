@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Acceptance 7 (issue 2): the command line runs a case and rejects bad options with exit code 2
+# and a message naming the culprit. Usage: test_cli.sh PATH/TO/exasph
+set -u
+exe=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# A real run prints the header, five step rows and the summary, and exits 0.
+out=$("$exe" --init square-patch -n 20 -s 5 --out "$work/run" 2>&1)
+rc=$?
+[ $rc -eq 0 ] || fail "run exited $rc: $out"
+echo "$out" | grep -q "8000 particles" || fail "header lacks the particle count"
+[ "$(echo "$out" | grep -cE '^ +[1-5] [0-9.e+-]+ ')" -eq 5 ] || fail "expected 5 step rows: $out"
+echo "$out" | grep -q "particle-steps/s" || fail "no summary"
+[ "$(wc -l < "$work/run/diagnostics.csv")" -eq 6 ] || fail "diagnostics.csv should have 6 lines"
+
+# Bad input: exit code 2 and one line naming the option.
+expect_rejected() { # NAME_IN_MESSAGE ARGS...
+    local needle=$1
+    shift
+    local msg
+    msg=$("$exe" "$@" --out "$work/bad" 2>&1 >/dev/null)
+    local rc=$?
+    [ $rc -eq 2 ] || fail "'$*' exited $rc, expected 2"
+    echo "$msg" | grep -q -- "$needle" || fail "'$*' message does not name '$needle': $msg"
+    [ "$(echo "$msg" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $msg"
+}
+expect_rejected "--bogus" --bogus
+expect_rejected "-n" -n 0
+expect_rejected "-n" -n abc
+expect_rejected "nosuchcase" --init nosuchcase
+expect_rejected "--kernel-exponent" --kernel-exponent 20
+expect_rejected "--ngmax" --ngmax 50
+expect_rejected "--courant" --courant 0
+expect_rejected "--t-end" --t-end -1
+expect_rejected "--threads" --threads 0
+expect_rejected "smoothing length" -n 4 -s 1
+
+"$exe" --help | grep -q -- "--kernel-exponent" || fail "--help lacks options"
+"$exe" --version | grep -q "exasph" || fail "--version"
+
+if [ $failures -eq 0 ]; then echo "cli: all checks passed"; else exit 1; fi

@@ -1,0 +1,89 @@
+// Acceptance 4 (issue 2): density and Omega on a regular lattice.
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "exasph/sim/sfc_order.hpp"
+#include "exasph/sph/hydro.hpp"
+#include "exasph/sph/sinc_kernel.hpp"
+#include "random_particles.hpp"
+
+using namespace exasph;
+
+namespace {
+
+struct Prepared {
+    ParticleSet<double> ps;
+    Box<double> box;
+    Octree<double> tree;
+    NeighbourLists<double> nl;
+};
+
+void prepare(Prepared& s) {
+    auto keys = sort_along_curve(s.ps, s.box, CurveKind::hilbert);
+    s.tree.build(keys.data(), std::uint32_t(s.ps.size()), 64);
+    SearchView<double> sv{s.ps.data(Field::x), s.ps.data(Field::y), s.ps.data(Field::z),
+                          s.ps.data(Field::h)};
+    s.tree.update_bounds(sv.x, sv.y, sv.z, sv.h);
+    s.nl.build(s.tree, sv, s.box, NeighbourCriterion::symmetric, std::uint32_t(s.ps.size()));
+}
+
+} // namespace
+
+class LatticeDensity : public ::testing::TestWithParam<double> {};
+
+TEST_P(LatticeDensity, MatchesTrueDensityAndOmegaIsOne) {
+    Prepared s;
+    s.ps = testref::periodic_lattice(16, GetParam(), s.box);
+    prepare(s);
+    KernelTable<double> k(sinc_kernel(6));
+    compute_density(s.ps, s.nl, s.box, k.view());
+    double max_rho_err = 0, max_omega_err = 0;
+    for (std::size_t i = 0; i < s.ps.size(); ++i) {
+        max_rho_err = std::max(max_rho_err, std::abs(s.ps[Field::rho][i] - 1.0));
+        max_omega_err = std::max(max_omega_err, std::abs(s.ps[Field::omega][i] - 1.0));
+    }
+    RecordProperty("max_rho_error", std::to_string(max_rho_err));
+    EXPECT_LT(max_rho_err, 5e-3);
+    EXPECT_LT(max_omega_err, 1e-2);
+    // The neighbour count of the lattice is near the target.
+    EXPECT_NEAR(s.ps[Field::nc][0], GetParam(), 0.15 * GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(NeighbourCounts, LatticeDensity, ::testing::Values(100.0, 250.0));
+
+TEST(Eos, IdealGasAndTait) {
+    auto g = ideal_gas_eos(2.0, 3.0, 5.0 / 3.0);
+    EXPECT_DOUBLE_EQ(g.p, 4.0);
+    EXPECT_DOUBLE_EQ(g.c, std::sqrt(5.0 / 3.0 * 2.0));
+    auto t = tait_eos(1.0, 1.0, -5.0, 3500.0);
+    EXPECT_DOUBLE_EQ(t.p, -5.0);
+    auto t2 = tait_eos(2.0, 1.0, 0.0, 10.0);
+    EXPECT_DOUBLE_EQ(t2.p, 100.0 / 7.0 * 127.0);
+}
+
+TEST(Iad, InverseOfTauOnALatticeIsIsotropic) {
+    Prepared s;
+    s.ps = testref::periodic_lattice(12, 100, s.box);
+    prepare(s);
+    KernelTable<double> k(sinc_kernel(6));
+    compute_density(s.ps, s.nl, s.box, k.view());
+    compute_iad(s.ps, s.nl, s.box, k.view());
+    // tau = (1/3) I * sum V r^2 W: C is diagonal with equal entries, off-diagonals vanish.
+    for (std::size_t i = 0; i < s.ps.size(); i += 97) {
+        EXPECT_NEAR(s.ps[Field::c11][i], s.ps[Field::c22][i], 1e-9 * s.ps[Field::c11][i]);
+        EXPECT_NEAR(s.ps[Field::c33][i], s.ps[Field::c22][i], 1e-9 * s.ps[Field::c11][i]);
+        EXPECT_NEAR(s.ps[Field::c12][i], 0.0, 1e-9 * s.ps[Field::c11][i]);
+    }
+}
+
+TEST(Iad, SingularTauIsReported) {
+    auto r = invert_symmetric3(1.0, 0.0, 0.0, 1.0, 0.0, 0.0); // coplanar neighbours
+    EXPECT_TRUE(r.singular);
+    auto ok = invert_symmetric3(2.0, 0.5, 0.0, 1.0, 0.0, 3.0);
+    EXPECT_FALSE(ok.singular);
+    // C tau = I for the first row.
+    EXPECT_NEAR(ok.c11 * 2.0 + ok.c12 * 0.5, 1.0, 1e-14);
+    EXPECT_NEAR(ok.c11 * 0.5 + ok.c12 * 1.0, 0.0, 1e-14);
+}

@@ -1,0 +1,85 @@
+// Acceptance 1 (issue 2): normalisation and lookup-table accuracy of the sinc kernels.
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "exasph/sph/sinc_kernel.hpp"
+
+using namespace exasph;
+
+namespace {
+
+// 4 pi \int_0^2 w(v) v^2 dv by composite 5-point Gauss-Legendre on 4000 panels: a quadrature
+// independent of the Simpson rule used to normalise the kernel.
+double volume_integral(const KernelTable<double>& k) {
+    const double xg[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                          0.9061798459386640};
+    const double wg[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
+                          0.2369268850561891, 0.2369268850561891};
+    const int panels = 4000;
+    const double len = 2.0 / panels;
+    double sum = 0;
+    for (int p = 0; p < panels; ++p) {
+        double mid = (p + 0.5) * len;
+        for (int g = 0; g < 5; ++g) {
+            double v = mid + 0.5 * len * xg[g];
+            sum += wg[g] * 0.5 * len * k.exact_value(v) * v * v;
+        }
+    }
+    return 4 * M_PI * sum;
+}
+
+} // namespace
+
+class SincKernel : public ::testing::TestWithParam<double> {};
+
+TEST_P(SincKernel, IntegratesToOne) {
+    KernelTable<double> k(sinc_kernel(GetParam()));
+    EXPECT_NEAR(volume_integral(k), 1.0, 1e-6);
+}
+
+TEST_P(SincKernel, QuadratureAgreesWithSphynxFit) {
+    double n = GetParam();
+    KernelTable<double> k(sinc_kernel(n));
+    EXPECT_NEAR(k.normalisation() / sinc_normalisation_fit(n), 1.0, 2e-4);
+}
+
+TEST_P(SincKernel, TableMatchesDirectEvaluation) {
+    KernelTable<double> k(sinc_kernel(GetParam()));
+    auto view = k.view();
+    double wmax = 0, dwmax = 0;
+    for (int i = 0; i <= 4000; ++i) {
+        wmax = std::max(wmax, std::abs(k.exact_value(i * 5e-4)));
+        dwmax = std::max(dwmax, std::abs(k.exact_derivative(i * 5e-4)));
+    }
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> u(0.0, 2.0);
+    double err_w = 0, err_dw = 0;
+    for (int i = 0; i < 100000; ++i) {
+        double v = u(rng);
+        err_w = std::max(err_w, std::abs(view.value(v) - k.exact_value(v)));
+        err_dw = std::max(err_dw, std::abs(view.derivative(v) - k.exact_derivative(v)));
+    }
+    EXPECT_LT(err_w / wmax, 1e-6);
+    EXPECT_LT(err_dw / dwmax, 1e-6);
+}
+
+TEST_P(SincKernel, DerivativeMatchesFiniteDifference) {
+    KernelTable<double> k(sinc_kernel(GetParam()));
+    for (double v : {0.1, 0.5, 1.0, 1.5, 1.9}) {
+        double fd = (k.exact_value(v + 1e-6) - k.exact_value(v - 1e-6)) / 2e-6;
+        EXPECT_NEAR(k.exact_derivative(v), fd, 1e-6 * std::abs(k.exact_value(0)));
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Exponents, SincKernel, ::testing::Values(3.0, 4.0, 6.0, 8.0, 10.0));
+
+TEST(SincKernelTable, ZeroOutsideSupport) {
+    KernelTable<double> k(sinc_kernel(6));
+    auto view = k.view();
+    EXPECT_EQ(view.value(2.0), 0.0);
+    EXPECT_EQ(view.value(3.5), 0.0);
+    EXPECT_GT(view.value(1.99), 0.0);
+}

@@ -1,0 +1,57 @@
+#include <vector>
+
+#include <gtest/gtest.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "exasph/particles/particle_set.hpp"
+#include "exasph/util/block_sum.hpp"
+#include "exasph/util/box.hpp"
+
+using namespace exasph;
+
+TEST(Box, MinimumImageOnPeriodicAxesOnly) {
+    Box<double> b;
+    b.lo = {0, 0, 0};
+    b.hi = {10, 10, 10};
+    b.periodic = {true, false, true};
+    EXPECT_DOUBLE_EQ(b.min_image(9.0, 0), -1.0);
+    EXPECT_DOUBLE_EQ(b.min_image(-9.0, 2), 1.0);
+    EXPECT_DOUBLE_EQ(b.min_image(9.0, 1), 9.0);
+    EXPECT_DOUBLE_EQ(b.wrap_shift(10.5, 0), -10.0);
+    EXPECT_DOUBLE_EQ(b.wrap_shift(-0.5, 2), 10.0);
+    EXPECT_DOUBLE_EQ(b.wrap_shift(-0.5, 1), 0.0);
+}
+
+TEST(ParticleSet, PermuteMovesStateFieldsAndIds) {
+    ParticleSet<double> ps;
+    ps.resize(3);
+    for (int i = 0; i < 3; ++i) {
+        ps.id[i] = 10 + i;
+        ps[Field::x][i] = i;
+        ps[Field::h][i] = 1;
+        ps[Field::m][i] = 1;
+    }
+    ps.permute({2, 0, 1});
+    EXPECT_EQ(ps.id, (std::vector<std::uint64_t>{12, 10, 11}));
+    EXPECT_EQ(ps[Field::x], (std::vector<double>{2, 0, 1}));
+    EXPECT_NO_THROW(ps.validate());
+    ps[Field::m][1] = 0;
+    EXPECT_THROW(ps.validate(), Error);
+}
+
+TEST(BlockSum, IndependentOfThreadCount) {
+    const std::size_t n = 100003;
+    auto f = [](std::size_t i) { return std::array<double, 1>{1.0 / double(i + 1)}; };
+#ifdef _OPENMP
+    omp_set_num_threads(1);
+#endif
+    double s1 = block_sum<1>(n, f)[0];
+#ifdef _OPENMP
+    omp_set_num_threads(2);
+#endif
+    double s2 = block_sum<1>(n, f)[0];
+    EXPECT_EQ(s1, s2);
+    EXPECT_NEAR(s1, std::log(double(n)) + 0.5772156649, 1e-4);
+}
