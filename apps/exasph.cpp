@@ -38,8 +38,7 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
     app.add_option("-n", cfg.side, "Particles per axis (about n^3 particles)")
         ->check(CLI::Range(2, 1000))
         ->capture_default_str();
-    app.add_option("-s,--steps", cfg.steps, "Number of steps to run")
-                      ->check(sign_check(true));
+    app.add_option("-s,--steps", cfg.steps, "Number of steps to run")->check(sign_check(true));
     app.add_option("--t-end", cfg.t_end,
                    "Physical end time; with -s the run stops at whichever comes first "
                    "(default: the case's end time when -s is not given)")
@@ -91,8 +90,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     if (cfg.ngmax < cfg.ng0) {
-        std::cerr << "exasph: error: --ngmax " << cfg.ngmax << " must be at least --ng0 "
-                  << cfg.ng0 << "\n";
+        std::cerr << "exasph: error: --ngmax " << cfg.ngmax << " must be at least --ng0 " << cfg.ng0
+                  << "\n";
         return 2;
     }
     try {

@@ -9,14 +9,14 @@ namespace exasph {
 
 // Rotating square patch (SPEC 9.1), CGS units.
 struct SquarePatchParams {
-    int side = 30;            // particles per axis
-    double ng0 = 100;         // target neighbour count, sets h_0
-    double length = 100.0;    // cm
-    double density = 1.0;     // g/cm^3
-    double omega = 5.0;       // rad/s
+    int side = 30;         // particles per axis
+    double ng0 = 100;      // target neighbour count, sets h_0
+    double length = 100.0; // cm
+    double density = 1.0;  // g/cm^3
+    double omega = 5.0;    // rad/s
     double sound_speed = 3500.0;
     double dt0 = 1e-6;
-    double t_end = 0.02;      // default end time (s)
+    double t_end = 0.02; // default end time (s)
 };
 
 // Initial pressure P_0(x', y') = rho L^2 sum_{m,l odd <= 39} -32 w^2 / (m l pi^2)
@@ -82,8 +82,8 @@ InitialConditions<T> make_square_patch(const SquarePatchParams& sp) {
         ps[Field::u][idx] = T(0);
         ps[Field::du_m1][idx] = T(0);
         ps[Field::rho0][idx] = T(sp.density); // replaced by the measured density at step 0
-        ps[Field::p0][idx] = T(square_patch_pressure((x + half) / sp.length,
-                                                     (y + half) / sp.length, sp));
+        ps[Field::p0][idx] =
+            T(square_patch_pressure((x + half) / sp.length, (y + half) / sp.length, sp));
     }
     return ic;
 }

@@ -8,25 +8,38 @@ namespace exasph {
 // Every particle field, declared once. Sorting, (later) migration, halo exchange, snapshots and
 // checkpoints iterate this list; adding a field means adding one enumerator and one row below.
 enum class Field : std::uint8_t {
-    x, y, z,          // position
-    x_m1, y_m1, z_m1, // position at the previous step (Press scheme, SPEC 7)
-    vx, vy, vz,       // velocity
-    h,                // smoothing length
-    m,                // mass
-    u,                // specific internal energy
-    du_m1,            // du/dt of the previous step (Adams-Bashforth, SPEC 7)
-    rho0,             // reference density of the Tait EOS (SPEC 4), measured at step 0
-    p0,               // background pressure of the Tait EOS (SPEC 4, 9.1)
-    rho,              // density (SPEC 3)
-    omega,            // grad-h term Omega (SPEC 3)
-    p,                // pressure
-    c,                // sound speed
-    c11, c12, c13, c22, c23, c33, // IAD matrix C = tau^-1 (SPEC 5)
-    ax, ay, az,       // acceleration
-    du,               // du/dt
-    vsig_max,         // max_b v^sig_ab (SPEC 6, time step)
-    nc,               // neighbour count within 2h (SPEC 2)
-    count_            // number of fields (not a field)
+    x,
+    y,
+    z, // position
+    x_m1,
+    y_m1,
+    z_m1, // position at the previous step (Press scheme, SPEC 7)
+    vx,
+    vy,
+    vz,    // velocity
+    h,     // smoothing length
+    m,     // mass
+    u,     // specific internal energy
+    du_m1, // du/dt of the previous step (Adams-Bashforth, SPEC 7)
+    rho0,  // reference density of the Tait EOS (SPEC 4), measured at step 0
+    p0,    // background pressure of the Tait EOS (SPEC 4, 9.1)
+    rho,   // density (SPEC 3)
+    omega, // grad-h term Omega (SPEC 3)
+    p,     // pressure
+    c,     // sound speed
+    c11,
+    c12,
+    c13,
+    c22,
+    c23,
+    c33, // IAD matrix C = tau^-1 (SPEC 5)
+    ax,
+    ay,
+    az,       // acceleration
+    du,       // du/dt
+    vsig_max, // max_b v^sig_ab (SPEC 6, time step)
+    nc,       // neighbour count within 2h (SPEC 2)
+    count_    // number of fields (not a field)
 };
 
 inline constexpr std::size_t kNumFields = static_cast<std::size_t>(Field::count_);
@@ -84,7 +97,9 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
 }};
 // clang-format on
 
-constexpr const FieldInfo& field_info(Field f) { return kFieldTable[static_cast<std::size_t>(f)]; }
+constexpr const FieldInfo& field_info(Field f) {
+    return kFieldTable[static_cast<std::size_t>(f)];
+}
 
 // The table is indexed by the enum: a row out of place is a compile error, not a silent bug.
 constexpr bool field_table_in_order() {

@@ -11,7 +11,8 @@ namespace exasph {
 // Proc. 707, 2004): the coordinates are transformed in place into the "transposed" Hilbert index,
 // whose bits interleaved like a Morton key give the 63-bit Hilbert key. Like Morton keys, every
 // prefix of 3l bits names one cube of level l, so the octree can be built from either.
-EXASPH_HD constexpr std::uint64_t hilbert_encode(std::uint32_t ix, std::uint32_t iy, std::uint32_t iz) {
+EXASPH_HD constexpr std::uint64_t hilbert_encode(std::uint32_t ix, std::uint32_t iy,
+                                                 std::uint32_t iz) {
     std::uint32_t a[3] = {ix, iy, iz};
     constexpr std::uint32_t top = 1u << (kKeyBitsPerAxis - 1);
     // Undo the rotations/reflections from the top bit down.

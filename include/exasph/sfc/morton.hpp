@@ -32,7 +32,8 @@ EXASPH_HD constexpr std::uint32_t compact_bits3(std::uint64_t v) {
     return static_cast<std::uint32_t>(v);
 }
 
-EXASPH_HD constexpr std::uint64_t morton_encode(std::uint32_t ix, std::uint32_t iy, std::uint32_t iz) {
+EXASPH_HD constexpr std::uint64_t morton_encode(std::uint32_t ix, std::uint32_t iy,
+                                                std::uint32_t iz) {
     return spread_bits3(ix) << 2 | spread_bits3(iy) << 1 | spread_bits3(iz);
 }
 

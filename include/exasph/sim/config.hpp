@@ -9,17 +9,17 @@ namespace exasph {
 // Everything a run is configured with; filled by the command line (apps/exasph.cpp).
 struct Config {
     std::string init = "square-patch"; // case name
-    int side = 30;                      // particles per axis (-n)
-    std::int64_t steps = -1;            // -s; < 0: not given
-    double t_end = -1.0;                // --t-end; < 0: not given
+    int side = 30;                     // particles per axis (-n)
+    std::int64_t steps = -1;           // -s; < 0: not given
+    double t_end = -1.0;               // --t-end; < 0: not given
     std::string out_dir = "exasph-output";
-    double ng0 = 100;            // target neighbour count (SPEC 2)
-    int ngmax = 150;             // neighbour cap: exceeding it is reported
-    double kernel_exponent = 6;  // sinc exponent n (SPEC 1)
-    double courant = 0.2;        // K_cour (SPEC 7)
-    double alpha = 1.0;          // artificial viscosity (SPEC 6)
-    int threads = 0;             // 0: OpenMP default
-    int bucket_size = 64;        // octree leaf size
+    double ng0 = 100;           // target neighbour count (SPEC 2)
+    int ngmax = 150;            // neighbour cap: exceeding it is reported
+    double kernel_exponent = 6; // sinc exponent n (SPEC 1)
+    double courant = 0.2;       // K_cour (SPEC 7)
+    double alpha = 1.0;         // artificial viscosity (SPEC 6)
+    int threads = 0;            // 0: OpenMP default
+    int bucket_size = 64;       // octree leaf size
     CurveKind curve = CurveKind::hilbert;
 };
 

@@ -125,9 +125,9 @@ inline int run(const Config& cfg, std::ostream& out) {
     const double rate = steps > 0 ? double(n) * steps / wall : 0.0;
     out << strprintf("done: %lld steps, t = %.6e, wall %.3f s\n", (long long)sim.step_count(),
                      sim.time(), wall);
-    out << strprintf("particle-steps/s %.4e, per core %.4e (%d threads), peak RSS %.1f B/particle\n",
-                     rate, rate / thread_count(), thread_count(),
-                     double(peak_rss_bytes()) / double(n));
+    out << strprintf(
+        "particle-steps/s %.4e, per core %.4e (%d threads), peak RSS %.1f B/particle\n", rate,
+        rate / thread_count(), thread_count(), double(peak_rss_bytes()) / double(n));
     out << "seconds per step by phase:";
     for (std::size_t i = 0; i < kNumPhases; ++i)
         out << strprintf(" %s %.4f", std::string(kPhaseNames[i]).c_str(),

@@ -22,12 +22,22 @@
 namespace exasph {
 
 enum Phase : std::size_t {
-    kSort, kTree, kNeighbours, kDensity, kEos, kIad, kMomentumEnergy, kTimeStep, kUpdate,
-    kSmoothingLength, kDiagnostics, kNumPhases
+    kSort,
+    kTree,
+    kNeighbours,
+    kDensity,
+    kEos,
+    kIad,
+    kMomentumEnergy,
+    kTimeStep,
+    kUpdate,
+    kSmoothingLength,
+    kDiagnostics,
+    kNumPhases
 };
 inline constexpr std::array<std::string_view, kNumPhases> kPhaseNames{
-    "sort", "tree", "neighbours", "density", "eos", "iad", "momentum_energy", "timestep",
-    "update", "h_update", "diagnostics"};
+    "sort",     "tree",   "neighbours", "density",    "eos", "iad", "momentum_energy",
+    "timestep", "update", "h_update",   "diagnostics"};
 
 // One SPH simulation on one node: the step pipeline of DESIGN.md, each phase timed.
 template <class T>
@@ -87,9 +97,7 @@ class Simulation {
     // Longest neighbour list of the last step (symmetric criterion); above ngmax is reported.
     std::uint32_t max_list_length() const { return max_list_; }
     const std::array<double, kNumPhases>& phase_times() const { return timer_.step_times(); }
-    const std::array<double, kNumPhases>& total_phase_times() const {
-        return timer_.total_times();
-    }
+    const std::array<double, kNumPhases>& total_phase_times() const { return timer_.total_times(); }
 
   private:
     void sort_along_sfc() {
@@ -145,8 +153,8 @@ class Simulation {
                 p[prev[d]][i] = x + shift;
                 p[vel[d]][i] = r.v;
             }
-            p[Field::u][i] =
-                adams_bashforth_energy(p[Field::u][i], p[Field::du][i], p[Field::du_m1][i], dt, dt_m1);
+            p[Field::u][i] = adams_bashforth_energy(p[Field::u][i], p[Field::du][i],
+                                                    p[Field::du_m1][i], dt, dt_m1);
             p[Field::du_m1][i] = p[Field::du][i];
         }
     }

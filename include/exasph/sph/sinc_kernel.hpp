@@ -7,7 +7,9 @@ namespace exasph {
 
 // Sinc kernels (SPEC 1): f(v) = S_n(pi v / 2), S_n(x) = (sin x / x)^n, support v < 2.
 namespace sinc_detail {
-inline double sinc(double x) { return x < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x; }
+inline double sinc(double x) {
+    return x < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x;
+}
 // d/dx (sin x / x); the series avoids cancellation near 0.
 inline double sinc_derivative(double x) {
     return x < 1e-3 ? -x / 3.0 + x * x * x / 30.0 : (x * std::cos(x) - std::sin(x)) / (x * x);

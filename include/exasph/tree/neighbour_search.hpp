@@ -28,7 +28,8 @@ struct SearchView {
 // Squared minimum-image distance between particles i and j. Shared by the tree search and the
 // brute-force reference so that both decide ties identically.
 template <class T>
-inline T pair_distance2(const SearchView<T>& p, const Box<T>& box, std::uint32_t i, std::uint32_t j) {
+inline T pair_distance2(const SearchView<T>& p, const Box<T>& box, std::uint32_t i,
+                        std::uint32_t j) {
     T dx = box.min_image(p.x[j] - p.x[i], 0);
     T dy = box.min_image(p.y[j] - p.y[i], 1);
     T dz = box.min_image(p.z[j] - p.z[i], 2);
@@ -93,9 +94,10 @@ template <class T>
 void check_periodic_reach(const Box<T>& box, T hmax) {
     for (int d = 0; d < 3; ++d) {
         if (box.periodic[d] && T(4) * hmax >= box.length(d))
-            throw input_error("smoothing length h = " + std::to_string(hmax) +
-                        " is too large for the periodic box: 2h must be below half the period " +
-                        std::to_string(box.length(d)) + " (use more particles)");
+            throw input_error(
+                "smoothing length h = " + std::to_string(hmax) +
+                " is too large for the periodic box: 2h must be below half the period " +
+                std::to_string(box.length(d)) + " (use more particles)");
     }
 }
 
@@ -144,8 +146,8 @@ class NeighbourLists {
         for (std::size_t l = 0; l < leaves.size(); ++l) {
             const auto& nd = tree.nodes()[leaves[l]];
             for (std::uint32_t i = nd.begin; i < nd.end; ++i) {
-                std::uint32_t c = find_neighbours(tree, p, box, crit, i,
-                                                  index_.data() + std::size_t(i) * stride_, stride_);
+                std::uint32_t c = find_neighbours(
+                    tree, p, box, crit, i, index_.data() + std::size_t(i) * stride_, stride_);
                 count_[i] = std::min(c, stride_);
                 max_count = std::max(max_count, c);
             }

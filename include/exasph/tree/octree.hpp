@@ -37,8 +37,9 @@ class Octree {
         split(0, keys, 0, bucket_size);
         for (std::uint32_t i = 0; i < nodes_.size(); ++i)
             if (nodes_[i].first_child < 0) leaves_.push_back(i);
-        std::sort(leaves_.begin(), leaves_.end(),
-                  [&](std::uint32_t a, std::uint32_t b) { return nodes_[a].begin < nodes_[b].begin; });
+        std::sort(leaves_.begin(), leaves_.end(), [&](std::uint32_t a, std::uint32_t b) {
+            return nodes_[a].begin < nodes_[b].begin;
+        });
     }
 
     // Tight bounding boxes and maximum h, leaves from the particles, inner nodes from children.
@@ -79,8 +80,12 @@ class Octree {
         }
     }
 
-    const std::vector<OctreeNode<T>>& nodes() const { return nodes_; }
-    const std::vector<std::uint32_t>& leaves() const { return leaves_; }
+    const std::vector<OctreeNode<T>>& nodes() const {
+        return nodes_;
+    }
+    const std::vector<std::uint32_t>& leaves() const {
+        return leaves_;
+    }
 
   private:
     void split(std::uint32_t node, const std::uint64_t* keys, int level, std::uint32_t bucket) {
@@ -93,8 +98,7 @@ class Octree {
             // End of this octant: first key whose digit at this level exceeds `digit`.
             std::uint64_t prefix = keys[lo] >> (shift + 3);
             std::uint64_t limit = ((prefix << 3) | digit) + 1;
-            const std::uint64_t* it = std::lower_bound(
-                keys + lo, keys + e, limit << shift);
+            const std::uint64_t* it = std::lower_bound(keys + lo, keys + e, limit << shift);
             std::uint32_t hi = static_cast<std::uint32_t>(it - keys);
             if (hi > lo) nodes_.push_back({lo, hi, -1, 0, {}, {}, 0});
             lo = hi;

@@ -17,6 +17,8 @@ class Error : public std::runtime_error {
 };
 
 // Bad input (option, file content): exit code 2 by project convention.
-inline Error input_error(const std::string& msg) { return Error(msg, 2); }
+inline Error input_error(const std::string& msg) {
+    return Error(msg, 2);
+}
 
 } // namespace exasph

@@ -78,7 +78,8 @@ TEST(Hilbert, KeyPrefixNamesOneCube) {
                 std::uint64_t k = base | (u(rng) & ((std::uint64_t(1) << shift) - 1));
                 auto c = hilbert_decode(k);
                 for (int d = 0; d < 3; ++d)
-                    ASSERT_EQ(c[d] >> (kKeyBitsPerAxis - level), c0[d] >> (kKeyBitsPerAxis - level));
+                    ASSERT_EQ(c[d] >> (kKeyBitsPerAxis - level),
+                              c0[d] >> (kKeyBitsPerAxis - level));
             }
         }
     }
