@@ -3,6 +3,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <mpi.h>
 
 #include "exasph/build_info.hpp"
 #include "exasph/sim/cases.hpp"
@@ -62,7 +63,11 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
         ->capture_default_str();
     app.add_option("--threads", cfg.threads, "OpenMP threads (default: OMP_NUM_THREADS or all)")
         ->check(CLI::Range(1, 4096));
-    app.add_option("--leaf-size", cfg.bucket_size, "Octree leaf size (particles)")
+    app.add_option("--global-bucket", cfg.global_bucket,
+                   "Global tree leaf size: the unit of MPI load balance (particles)")
+        ->check(CLI::Range(1, 1 << 20))
+        ->capture_default_str();
+    app.add_option("--leaf-size", cfg.bucket_size, "Local octree leaf size (particles)")
         ->check(CLI::Range(1, 4096))
         ->capture_default_str();
     std::map<std::string, exasph::CurveKind> curves{{"hilbert", exasph::CurveKind::hilbert},
@@ -73,36 +78,59 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
                                           exasph::kBuildInfo + ")");
 }
 
+// Ends the run after an error: errors seen by every rank end cleanly (rank 0 reports); an error
+// on one rank of several aborts them all, so that no rank waits forever in a collective.
+int finish_with_error(const std::string& msg, int code, bool all_ranks) {
+    int rank = 0, nranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+    std::cout.flush();
+    if (nranks == 1 || all_ranks) {
+        if (rank == 0) std::cerr << "exasph: error: " << msg << "\n";
+        MPI_Finalize();
+        return code;
+    }
+    std::cerr << "exasph: error on rank " << rank << ": " << msg << "\n";
+    MPI_Abort(MPI_COMM_WORLD, code);
+    return code;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
+    int provided = 0;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     exasph::Config cfg;
-    CLI::App app{"exasph: smoothed-particle hydrodynamics (SPH-EXA mini-app physics)", "exasph"};
+    CLI::App app{"exasph: smoothed-particle hydrodynamics (SPH-EXA mini-app physics); "
+                 "runs alone or under mpirun",
+                 "exasph"};
     add_options(app, cfg);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
+        int code = rank == 0 ? app.exit(e) : 0;
+        MPI_Finalize();
+        return code;
     } catch (const CLI::CallForVersion& e) {
-        return app.exit(e);
+        int code = rank == 0 ? app.exit(e) : 0;
+        MPI_Finalize();
+        return code;
     } catch (const CLI::ParseError& e) {
-        std::cerr << "exasph: error: " << e.what() << " (see exasph --help)\n";
-        return 2;
+        return finish_with_error(std::string(e.what()) + " (see exasph --help)", 2, true);
     }
-    if (cfg.ngmax < cfg.ng0) {
-        std::cerr << "exasph: error: --ngmax " << cfg.ngmax << " must be at least --ng0 " << cfg.ng0
-                  << "\n";
-        return 2;
-    }
+    if (cfg.ngmax < cfg.ng0)
+        return finish_with_error("--ngmax " + std::to_string(cfg.ngmax) +
+                                     " must be at least --ng0 " + std::to_string(cfg.ng0),
+                                 2, true);
     try {
-        return exasph::run(cfg, std::cout);
+        int code = exasph::run(cfg, std::cout);
+        MPI_Finalize();
+        return code;
     } catch (const exasph::Error& e) {
-        std::cout.flush();
-        std::cerr << "exasph: error: " << e.what() << "\n";
-        return e.exit_code();
+        return finish_with_error(e.what(), e.exit_code(), e.all_ranks());
     } catch (const std::exception& e) {
-        std::cout.flush();
-        std::cerr << "exasph: internal error: " << e.what() << "\n";
-        return 1;
+        return finish_with_error(std::string("internal error: ") + e.what(), 1, false);
     }
 }

@@ -5,7 +5,8 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${EXASPH_BUILD_DIR:-$root/build}"
 
-packages=(cmake g++ make ninja-build libgtest-dev libbenchmark-dev libcli11-dev)
+packages=(cmake g++ make ninja-build libgtest-dev libbenchmark-dev libcli11-dev libopenmpi-dev
+          openmpi-bin)
 if command -v dpkg >/dev/null 2>&1; then
     missing=()
     for p in "${packages[@]}"; do
@@ -25,7 +26,7 @@ if command -v dpkg >/dev/null 2>&1; then
     fi
 else
     echo "exasph setup: not a Debian system; assuming cmake, a C++20 compiler, GoogleTest," \
-         "Google Benchmark and CLI11 are installed" >&2
+         "Google Benchmark, CLI11 and MPI are installed" >&2
 fi
 
 if [ ! -f "$build/CMakeCache.txt" ]; then

@@ -40,8 +40,10 @@ inline double square_patch_pressure(double xs, double ys, const SquarePatchParam
     return sp.density * sp.length * sp.length * sum;
 }
 
+// Rank `rank` of `nranks` creates only its share of the lattice (ids [N r / P, N (r+1) / P));
+// the first domain sync moves particles to their owners.
 template <class T>
-InitialConditions<T> make_square_patch(const SquarePatchParams& sp) {
+InitialConditions<T> make_square_patch(const SquarePatchParams& sp, int rank = 0, int nranks = 1) {
     if (sp.side < 2) throw input_error("square patch: -n must be at least 2");
     InitialConditions<T> ic;
     ic.name = "square-patch";
@@ -58,31 +60,34 @@ InitialConditions<T> make_square_patch(const SquarePatchParams& sp) {
     const double dx = sp.length / double(sp.side);
     const double mass = sp.density * sp.length * sp.length * sp.length / double(n);
     const double h0 = 0.5 * dx * std::cbrt(3.0 * sp.ng0 / (4.0 * M_PI));
+    const std::uint64_t first = n * std::uint64_t(rank) / std::uint64_t(nranks);
+    const std::uint64_t last = n * std::uint64_t(rank + 1) / std::uint64_t(nranks);
     auto& ps = ic.particles;
-    ps.resize(n);
+    ps.resize(last - first);
 #pragma omp parallel for schedule(static)
-    for (std::uint64_t idx = 0; idx < n; ++idx) {
+    for (std::uint64_t idx = first; idx < last; ++idx) {
+        const std::uint64_t s = idx - first; // slot on this rank
         std::uint64_t i = idx / (n1 * n1), j = (idx / n1) % n1, k = idx % n1;
         double x = -half + (double(i) + 0.5) * dx;
         double y = -half + (double(j) + 0.5) * dx;
         double z = -half + (double(k) + 0.5) * dx;
         double vx = sp.omega * y, vy = -sp.omega * x;
-        ps.id[idx] = idx;
-        ps[Field::x][idx] = T(x);
-        ps[Field::y][idx] = T(y);
-        ps[Field::z][idx] = T(z);
-        ps[Field::vx][idx] = T(vx);
-        ps[Field::vy][idx] = T(vy);
-        ps[Field::vz][idx] = T(0);
-        ps[Field::x_m1][idx] = T(x - vx * sp.dt0);
-        ps[Field::y_m1][idx] = T(y - vy * sp.dt0);
-        ps[Field::z_m1][idx] = T(z);
-        ps[Field::h][idx] = T(h0);
-        ps[Field::m][idx] = T(mass);
-        ps[Field::u][idx] = T(0);
-        ps[Field::du_m1][idx] = T(0);
-        ps[Field::rho0][idx] = T(sp.density); // replaced by the measured density at step 0
-        ps[Field::p0][idx] =
+        ps.id[s] = idx;
+        ps[Field::x][s] = T(x);
+        ps[Field::y][s] = T(y);
+        ps[Field::z][s] = T(z);
+        ps[Field::vx][s] = T(vx);
+        ps[Field::vy][s] = T(vy);
+        ps[Field::vz][s] = T(0);
+        ps[Field::x_m1][s] = T(x - vx * sp.dt0);
+        ps[Field::y_m1][s] = T(y - vy * sp.dt0);
+        ps[Field::z_m1][s] = T(z);
+        ps[Field::h][s] = T(h0);
+        ps[Field::m][s] = T(mass);
+        ps[Field::u][s] = T(0);
+        ps[Field::du_m1][s] = T(0);
+        ps[Field::rho0][s] = T(sp.density); // replaced by the measured density at step 0
+        ps[Field::p0][s] =
             T(square_patch_pressure((x + half) / sp.length, (y + half) / sp.length, sp));
     }
     return ic;

@@ -2,6 +2,7 @@
 #include <array>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 namespace exasph {
 
@@ -49,8 +50,12 @@ inline constexpr std::size_t kNumFields = static_cast<std::size_t>(Field::count_
 enum FieldRole : std::uint8_t {
     kState = 1u << 0,
     kDerived = 1u << 1,
-    kHalo = 1u << 2,     // needed on halo particles by a later neighbour loop
-    kSnapshot = 1u << 3, // written to snapshots by default
+    kSnapshot = 1u << 2, // written to snapshots by default
+    // Halo groups: fields that halo particles need, by the point of the step where they become
+    // valid (DESIGN: three halo exchanges per step).
+    kHaloSync = 1u << 3,    // after the domain sync, before the neighbour search
+    kHaloDensity = 1u << 4, // after density and EOS, before IAD
+    kHaloIad = 1u << 5,     // after IAD, before momentum and energy
 };
 
 struct FieldInfo {
@@ -63,31 +68,31 @@ struct FieldInfo {
 
 // clang-format off
 inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
-    {Field::x,        "x",        "length",      kState | kHalo | kSnapshot, "position x"},
-    {Field::y,        "y",        "length",      kState | kHalo | kSnapshot, "position y"},
-    {Field::z,        "z",        "length",      kState | kHalo | kSnapshot, "position z"},
+    {Field::x,        "x",        "length",      kState | kHaloSync | kSnapshot, "position x"},
+    {Field::y,        "y",        "length",      kState | kHaloSync | kSnapshot, "position y"},
+    {Field::z,        "z",        "length",      kState | kHaloSync | kSnapshot, "position z"},
     {Field::x_m1,     "x_m1",     "length",      kState, "position x at the previous step"},
     {Field::y_m1,     "y_m1",     "length",      kState, "position y at the previous step"},
     {Field::z_m1,     "z_m1",     "length",      kState, "position z at the previous step"},
-    {Field::vx,       "vx",       "length/time", kState | kHalo | kSnapshot, "velocity x"},
-    {Field::vy,       "vy",       "length/time", kState | kHalo | kSnapshot, "velocity y"},
-    {Field::vz,       "vz",       "length/time", kState | kHalo | kSnapshot, "velocity z"},
-    {Field::h,        "h",        "length",      kState | kHalo | kSnapshot, "smoothing length"},
-    {Field::m,        "m",        "mass",        kState | kHalo | kSnapshot, "mass"},
+    {Field::vx,       "vx",       "length/time", kState | kHaloSync | kSnapshot, "velocity x"},
+    {Field::vy,       "vy",       "length/time", kState | kHaloSync | kSnapshot, "velocity y"},
+    {Field::vz,       "vz",       "length/time", kState | kHaloSync | kSnapshot, "velocity z"},
+    {Field::h,        "h",        "length",      kState | kHaloSync | kSnapshot, "smoothing length"},
+    {Field::m,        "m",        "mass",        kState | kHaloSync | kSnapshot, "mass"},
     {Field::u,        "u",        "energy/mass", kState | kSnapshot, "specific internal energy"},
     {Field::du_m1,    "du_m1",    "energy/mass/time", kState, "du/dt at the previous step"},
     {Field::rho0,     "rho0",     "mass/length^3", kState, "Tait EOS reference density"},
     {Field::p0,       "p0",       "pressure",    kState, "Tait EOS background pressure"},
-    {Field::rho,      "rho",      "mass/length^3", kDerived | kHalo | kSnapshot, "density"},
-    {Field::omega,    "omega",    "1",           kDerived | kHalo, "grad-h correction Omega"},
-    {Field::p,        "p",        "pressure",    kDerived | kHalo | kSnapshot, "pressure"},
-    {Field::c,        "c",        "length/time", kDerived | kHalo | kSnapshot, "sound speed"},
-    {Field::c11,      "c11",      "1/length^2",  kDerived | kHalo, "IAD matrix C_11"},
-    {Field::c12,      "c12",      "1/length^2",  kDerived | kHalo, "IAD matrix C_12"},
-    {Field::c13,      "c13",      "1/length^2",  kDerived | kHalo, "IAD matrix C_13"},
-    {Field::c22,      "c22",      "1/length^2",  kDerived | kHalo, "IAD matrix C_22"},
-    {Field::c23,      "c23",      "1/length^2",  kDerived | kHalo, "IAD matrix C_23"},
-    {Field::c33,      "c33",      "1/length^2",  kDerived | kHalo, "IAD matrix C_33"},
+    {Field::rho,      "rho",      "mass/length^3", kDerived | kHaloDensity | kSnapshot, "density"},
+    {Field::omega,    "omega",    "1",           kDerived | kHaloDensity, "grad-h correction Omega"},
+    {Field::p,        "p",        "pressure",    kDerived | kHaloDensity | kSnapshot, "pressure"},
+    {Field::c,        "c",        "length/time", kDerived | kHaloDensity | kSnapshot, "sound speed"},
+    {Field::c11,      "c11",      "1/length^2",  kDerived | kHaloIad, "IAD matrix C_11"},
+    {Field::c12,      "c12",      "1/length^2",  kDerived | kHaloIad, "IAD matrix C_12"},
+    {Field::c13,      "c13",      "1/length^2",  kDerived | kHaloIad, "IAD matrix C_13"},
+    {Field::c22,      "c22",      "1/length^2",  kDerived | kHaloIad, "IAD matrix C_22"},
+    {Field::c23,      "c23",      "1/length^2",  kDerived | kHaloIad, "IAD matrix C_23"},
+    {Field::c33,      "c33",      "1/length^2",  kDerived | kHaloIad, "IAD matrix C_33"},
     {Field::ax,       "ax",       "length/time^2", kDerived | kSnapshot, "acceleration x"},
     {Field::ay,       "ay",       "length/time^2", kDerived | kSnapshot, "acceleration y"},
     {Field::az,       "az",       "length/time^2", kDerived | kSnapshot, "acceleration z"},
@@ -96,6 +101,14 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::nc,       "nc",       "1",           kDerived | kSnapshot, "neighbour count within 2h"},
 }};
 // clang-format on
+
+// The fields carrying any of the role bits, in table order.
+inline std::vector<Field> fields_with_role(std::uint8_t roles) {
+    std::vector<Field> out;
+    for (const auto& info : kFieldTable)
+        if (info.roles & roles) out.push_back(info.field);
+    return out;
+}
 
 constexpr const FieldInfo& field_info(Field f) {
     return kFieldTable[static_cast<std::size_t>(f)];

@@ -30,8 +30,9 @@ class ParticleSet {
     T* data(Field f) { return (*this)[f].data(); }
     const T* data(Field f) const { return (*this)[f].data(); }
 
-    // Reorders all fields whose role matches `roles` (and the ids): new[i] = old[order[i]].
-    // Derived fields are recomputed every step and need no permutation.
+    // Reorders all fields whose role matches `roles` (and the ids): new[i] = old[order[i]]; the
+    // set then has order.size() particles (a shorter order drops particles). Derived fields are
+    // recomputed every step: they are only resized.
     void permute(const std::vector<std::uint32_t>& order, std::uint8_t roles = kState) {
         std::vector<T> scratch(order.size());
         for (const auto& info : kFieldTable) {
@@ -43,6 +44,7 @@ class ParticleSet {
         std::vector<std::uint64_t> new_id(order.size());
         gather(id, order, new_id);
         id.swap(new_id);
+        resize(order.size());
     }
 
     // Checks the invariants of the state: sizes agree, state values finite, m > 0, h > 0.

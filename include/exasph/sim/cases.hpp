@@ -14,13 +14,14 @@ inline const std::vector<std::string>& case_names() {
     return names;
 }
 
+// Each rank makes only its share of the particles.
 template <class T>
-InitialConditions<T> make_case(const Config& cfg) {
+InitialConditions<T> make_case(const Config& cfg, int rank = 0, int nranks = 1) {
     if (cfg.init == "square-patch") {
         SquarePatchParams sp;
         sp.side = cfg.side;
         sp.ng0 = cfg.ng0;
-        return make_square_patch<T>(sp);
+        return make_square_patch<T>(sp, rank, nranks);
     }
     std::string known;
     for (const auto& n : case_names()) known += (known.empty() ? "" : ", ") + n;

@@ -19,7 +19,8 @@ struct Config {
     double courant = 0.2;       // K_cour (SPEC 7)
     double alpha = 1.0;         // artificial viscosity (SPEC 6)
     int threads = 0;            // 0: OpenMP default
-    int bucket_size = 64;       // octree leaf size
+    int bucket_size = 64;       // local octree leaf size
+    int global_bucket = 128;    // global (top) tree leaf size: the unit of MPI load balance
     CurveKind curve = CurveKind::hilbert;
 };
 

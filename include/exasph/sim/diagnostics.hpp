@@ -2,13 +2,15 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 
+#include "exasph/domain/collectives.hpp"
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/util/block_sum.hpp"
 
 namespace exasph {
 
-// Global conserved quantities and neighbour statistics of one step (SPEC 10).
+// Global conserved quantities, neighbour and decomposition statistics of one step (SPEC 10).
 struct Diagnostics {
     std::int64_t step = 0;
     double time = 0, dt = 0;
@@ -17,15 +19,23 @@ struct Diagnostics {
     std::array<double, 3> momentum{};
     std::array<double, 3> angular_momentum{}; // about the origin
     double nc_min = 0, nc_mean = 0, nc_max = 0;
+    double halo_ratio_mean = 0, halo_ratio_max = 0; // halos / owned over ranks
 };
 
-// Sums over all particles, independent of the thread count (block_sum).
+// Layout of the diagnostics reduction: SumMax elements 0..10 below, then six for the extent of
+// the positions (which gives next step's box without another collective).
+inline constexpr std::size_t kDiagElements = 11;
+inline constexpr std::size_t kDiagWithExtent = kDiagElements + 6;
+
+// This rank's contribution over its owned particles [0, n_owned); sums are independent of the
+// thread count (block_sum).
 template <class T>
-Diagnostics measure_conserved(const ParticleSet<T>& ps) {
+void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_t n_halo,
+                       SumMax* out) {
     const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
     const T *vx = ps.data(Field::vx), *vy = ps.data(Field::vy), *vz = ps.data(Field::vz);
     const T *m = ps.data(Field::m), *u = ps.data(Field::u), *nc = ps.data(Field::nc);
-    auto s = block_sum<9>(ps.size(), [&](std::size_t i) -> std::array<double, 9> {
+    auto s = block_sum<9>(n_owned, [&](std::size_t i) -> std::array<double, 9> {
         double mi = m[i];
         double v2 = double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i];
         return {0.5 * mi * v2,
@@ -38,19 +48,31 @@ Diagnostics measure_conserved(const ParticleSet<T>& ps) {
                 mi * (double(x[i]) * vy[i] - double(y[i]) * vx[i]),
                 double(nc[i])};
     });
-    Diagnostics d;
-    d.n = ps.size();
-    d.ekin = s[0];
-    d.eint = s[1];
-    d.etot = d.ekin + d.eint + d.epot;
-    d.momentum = {s[2], s[3], s[4]};
-    d.angular_momentum = {s[5], s[6], s[7]};
-    if (ps.size() > 0) {
-        auto [lo, hi] = std::minmax_element(ps[Field::nc].begin(), ps[Field::nc].end());
-        d.nc_min = *lo;
-        d.nc_max = *hi;
-        d.nc_mean = s[8] / double(ps.size());
+    double nc_lo = std::numeric_limits<double>::infinity(), nc_hi = -nc_lo;
+    for (std::size_t i = 0; i < n_owned; ++i) {
+        nc_lo = std::min(nc_lo, double(nc[i]));
+        nc_hi = std::max(nc_hi, double(nc[i]));
     }
+    for (int k = 0; k < 8; ++k) out[k] = {s[k], -std::numeric_limits<double>::infinity()};
+    out[8] = {s[8], nc_hi};
+    out[9] = {double(n_owned), -nc_lo};
+    double ratio = n_owned > 0 ? double(n_halo) / double(n_owned) : 0.0;
+    out[10] = {ratio, ratio};
+}
+
+inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
+    Diagnostics d;
+    d.ekin = e[0].sum;
+    d.eint = e[1].sum;
+    d.etot = d.ekin + d.eint + d.epot;
+    d.momentum = {e[2].sum, e[3].sum, e[4].sum};
+    d.angular_momentum = {e[5].sum, e[6].sum, e[7].sum};
+    d.n = std::uint64_t(e[9].sum);
+    d.nc_mean = d.n > 0 ? e[8].sum / double(d.n) : 0.0;
+    d.nc_max = e[8].max;
+    d.nc_min = -e[9].max;
+    d.halo_ratio_mean = e[10].sum / nranks;
+    d.halo_ratio_max = e[10].max;
     return d;
 }
 

@@ -4,12 +4,16 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <memory>
 #include <ostream>
 #include <string>
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+
+#include <mpi.h>
 
 #include "exasph/build_info.hpp"
 #include "exasph/sim/cases.hpp"
@@ -61,34 +65,59 @@ class DiagnosticsCsv {
     std::ofstream out_;
 };
 
-// Runs a whole simulation as configured, printing the header, one row per step and a summary.
-// Returns the process exit code; user errors are thrown as Error.
+// Opens diagnostics.csv on rank 0; every rank learns whether that worked (start-up broadcast).
+inline std::unique_ptr<DiagnosticsCsv> open_diagnostics(const Config& cfg, bool root) {
+    std::unique_ptr<DiagnosticsCsv> csv;
+    std::string err;
+    if (root) {
+        std::filesystem::path dir(cfg.out_dir);
+        std::error_code ec;
+        std::filesystem::create_directories(dir, ec);
+        if (ec)
+            err = "--out: cannot create directory '" + cfg.out_dir + "': " + ec.message();
+        else {
+            try {
+                csv = std::make_unique<DiagnosticsCsv>(dir / "diagnostics.csv");
+            } catch (const Error& e) {
+                err = e.what();
+            }
+        }
+    }
+    int ok = err.empty();
+    MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (!ok) throw Error(root ? err : "cannot write the output directory", 3, true);
+    return csv;
+}
+
+// Runs a whole simulation as configured on all ranks of MPI_COMM_WORLD; rank 0 prints the
+// header, one row per step and a summary. Returns the exit code; errors are thrown as Error.
 inline int run(const Config& cfg, std::ostream& out) {
 #ifdef _OPENMP
     if (cfg.threads > 0) omp_set_num_threads(cfg.threads);
 #endif
-    auto ic = make_case<double>(cfg);
+    int rank = 0, nranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+    const bool root = rank == 0;
+    auto ic = make_case<double>(cfg, rank, nranks);
     const double t_end = cfg.t_end > 0 ? cfg.t_end : (cfg.steps < 0 ? ic.t_end : -1.0);
-    const std::size_t n = ic.particles.size();
-    std::filesystem::path dir(cfg.out_dir);
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throw Error("--out: cannot create directory '" + cfg.out_dir + "': " + ec.message(), 3);
-    DiagnosticsCsv csv(dir / "diagnostics.csv");
-
-    out << "exasph " << kVersion << " (" << kBuildInfo << ")\n";
-    out << strprintf("case %s, %zu particles, %d threads, ng0 %g, ngmax %d, sinc n %g, "
-                     "courant %g, alpha %g\n",
-                     cfg.init.c_str(), n, thread_count(), cfg.ng0, cfg.ngmax, cfg.kernel_exponent,
-                     cfg.courant, cfg.alpha);
-    out << (t_end > 0 ? strprintf("until t = %g", t_end) : std::string())
-        << (t_end > 0 && cfg.steps >= 0 ? " or " : "")
-        << (cfg.steps >= 0 ? strprintf("%lld steps", (long long)cfg.steps) : std::string())
-        << ", output in " << cfg.out_dir << "/\n";
-    out << strprintf("%6s %12s %11s %16s %16s %9s %9s\n", "step", "t", "dt", "E_tot", "L_z",
-                     "s/step", "ETA s");
+    auto csv = open_diagnostics(cfg, root);
 
     Simulation<double> sim(cfg, std::move(ic));
+    const std::uint64_t n = sim.diagnostics().n;
+    if (root) {
+        out << "exasph " << kVersion << " (" << kBuildInfo << ")\n";
+        out << strprintf("case %s, %llu particles, %d ranks x %d threads, ng0 %g, ngmax %d, "
+                         "sinc n %g, courant %g, alpha %g, global bucket %d\n",
+                         cfg.init.c_str(), (unsigned long long)n, nranks, thread_count(), cfg.ng0,
+                         cfg.ngmax, cfg.kernel_exponent, cfg.courant, cfg.alpha, cfg.global_bucket);
+        out << (t_end > 0 ? strprintf("until t = %g", t_end) : std::string())
+            << (t_end > 0 && cfg.steps >= 0 ? " or " : "")
+            << (cfg.steps >= 0 ? strprintf("%lld steps", (long long)cfg.steps) : std::string())
+            << ", output in " << cfg.out_dir << "/\n";
+        out << strprintf("%6s %12s %11s %16s %16s %6s %11s %9s %9s\n", "step", "t", "dt", "E_tot",
+                         "L_z", "imbal", "halo avg/mx", "s/step", "ETA s");
+    }
     if (t_end > 0) sim.set_end_time(t_end);
     const double wall0 = wall_seconds();
     bool warned_ngmax = false;
@@ -103,32 +132,38 @@ inline int run(const Config& cfg, std::ostream& out) {
         const auto& d = sim.diagnostics();
         if (!std::isfinite(d.etot)) {
             sim.particles().validate(); // names the particle when a state field went bad
-            throw Error("total energy is not finite at step " + std::to_string(d.step));
+            throw Error("total energy is not finite at step " + std::to_string(d.step), 1, true);
         }
         if (!warned_ngmax && sim.max_list_length() > std::uint32_t(cfg.ngmax)) {
-            out << "warning: a particle has " << sim.max_list_length()
-                << " neighbours, more than ngmax = " << cfg.ngmax
-                << "; lists were enlarged (no truncation)\n";
+            std::cerr << "warning: rank " << rank << ": a particle has " << sim.max_list_length()
+                      << " neighbours, more than ngmax = " << cfg.ngmax
+                      << "; lists were enlarged (no truncation)\n";
             warned_ngmax = true;
         }
+        if (!root) continue;
         double mean_wall = (wall_seconds() - wall0) / double(sim.step_count());
         std::string eta = t_end > 0 && d.dt > 0
                               ? strprintf("%9.1f", (t_end - d.time) / d.dt * mean_wall)
                               : strprintf("%9s", "-");
-        out << strprintf("%6lld %12.6e %11.4e %16.9e %16.9e %9.3f ", (long long)d.step, d.time,
-                         d.dt, d.etot, d.angular_momentum[2], wstep)
+        out << strprintf("%6lld %12.6e %11.4e %16.9e %16.9e %6.3f %5.2f/%5.2f %9.3f ",
+                         (long long)d.step, d.time, d.dt, d.etot, d.angular_momentum[2],
+                         sim.imbalance(), d.halo_ratio_mean, d.halo_ratio_max, wstep)
             << eta << "\n";
-        csv.write(d, sim.phase_times());
+        csv->write(d, sim.phase_times());
     }
     const double wall = wall_seconds() - wall0;
     const double steps = double(sim.step_count());
     const double rate = steps > 0 ? double(n) * steps / wall : 0.0;
+    const int cores = nranks * thread_count();
+    double rss = double(peak_rss_bytes());
+    MPI_Allreduce(MPI_IN_PLACE, &rss, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD); // output time
+    if (!root) return 0;
     out << strprintf("done: %lld steps, t = %.6e, wall %.3f s\n", (long long)sim.step_count(),
                      sim.time(), wall);
-    out << strprintf(
-        "particle-steps/s %.4e, per core %.4e (%d threads), peak RSS %.1f B/particle\n", rate,
-        rate / thread_count(), thread_count(), double(peak_rss_bytes()) / double(n));
-    out << "seconds per step by phase:";
+    out << strprintf("particle-steps/s %.4e, per core %.4e (%d ranks x %d threads), "
+                     "peak RSS %.1f B/particle (all ranks)\n",
+                     rate, rate / cores, nranks, thread_count(), rss / double(n));
+    out << "seconds per step by phase (rank 0):";
     for (std::size_t i = 0; i < kNumPhases; ++i)
         out << strprintf(" %s %.4f", std::string(kPhaseNames[i]).c_str(),
                          steps > 0 ? sim.total_phase_times()[i] / steps : 0.0);

@@ -7,23 +7,23 @@
 #include <vector>
 
 #include "exasph/cases/initial_conditions.hpp"
+#include "exasph/domain/domain.hpp"
 #include "exasph/sim/config.hpp"
 #include "exasph/sim/diagnostics.hpp"
-#include "exasph/sim/sfc_order.hpp"
 #include "exasph/sph/hydro.hpp"
 #include "exasph/sph/integrator.hpp"
 #include "exasph/sph/sinc_kernel.hpp"
 #include "exasph/sph/smoothing_length.hpp"
 #include "exasph/sph/timestep.hpp"
 #include "exasph/tree/neighbour_search.hpp"
-#include "exasph/tree/octree.hpp"
 #include "exasph/util/timer.hpp"
 
 namespace exasph {
 
+// Phases of the step. `sync` is migration + SFC sort + trees + halo discovery and exchange;
+// `eos` and `iad` include the halo exchanges that follow them.
 enum Phase : std::size_t {
-    kSort,
-    kTree,
+    kSync,
     kNeighbours,
     kDensity,
     kEos,
@@ -36,36 +36,41 @@ enum Phase : std::size_t {
     kNumPhases
 };
 inline constexpr std::array<std::string_view, kNumPhases> kPhaseNames{
-    "sort",     "tree",   "neighbours", "density",    "eos", "iad", "momentum_energy",
-    "timestep", "update", "h_update",   "diagnostics"};
+    "sync",     "neighbours", "density",  "eos",        "iad", "momentum_energy",
+    "timestep", "update",     "h_update", "diagnostics"};
 
-// One SPH simulation on one node: the step pipeline of DESIGN.md, each phase timed.
+// One SPH simulation: the step pipeline of DESIGN.md, each phase timed. Runs on any number of
+// MPI ranks of `comm` (one rank included); results do not depend on ranks or threads beyond
+// round-off. Collectives per step: global tree counts (sync), minimum dt, diagnostics.
 template <class T>
 class Simulation {
   public:
-    Simulation(const Config& cfg, InitialConditions<T> ic)
+    Simulation(const Config& cfg, InitialConditions<T> ic, MPI_Comm comm = MPI_COMM_WORLD)
         : cfg_(cfg), ps_(std::move(ic.particles)), box_(ic.box), eos_(ic.eos),
           kernel_(sinc_kernel(cfg.kernel_exponent)), nlists_(std::uint32_t(cfg.ngmax)),
+          domain_(comm, std::uint32_t(cfg.global_bucket), std::uint32_t(cfg.bucket_size),
+                  cfg.curve),
           dt_m1_(ic.dt0), dt0_(ic.dt0) {
         ps_.validate();
-        diag_ = measure_conserved(ps_);
+        domain_.init(ps_, box_);
+        diagnose(0.0);
     }
 
     void step() {
         timer_.begin_step();
         timer_.start();
-        sort_along_sfc();
-        timer_.stop(kSort);
-        build_tree();
-        timer_.stop(kTree);
+        domain_.sync(ps_, box_);
+        timer_.stop(kSync);
         find_neighbours();
         timer_.stop(kNeighbours);
         compute_density(ps_, nlists_, box_, kernel_.view());
-        if (step_ == 0 && eos_.kind == EosKind::tait) ps_[Field::rho0] = ps_[Field::rho];
+        if (step_ == 0 && eos_.kind == EosKind::tait) capture_reference_density();
         timer_.stop(kDensity);
-        compute_eos(ps_, eos_);
+        compute_eos(ps_, eos_, n_owned());
+        domain_.exchange_halos(ps_, kHaloDensity);
         timer_.stop(kEos);
         compute_iad(ps_, nlists_, box_, kernel_.view());
+        domain_.exchange_halos(ps_, kHaloIad);
         timer_.stop(kIad);
         compute_momentum_energy(ps_, nlists_, box_, kernel_.view(), T(cfg_.alpha));
         timer_.stop(kMomentumEnergy);
@@ -78,10 +83,7 @@ class Simulation {
         time_ += dt;
         dt_m1_ = dt;
         ++step_;
-        diag_ = measure_conserved(ps_);
-        diag_.step = step_;
-        diag_.time = time_;
-        diag_.dt = dt;
+        diagnose(dt);
         timer_.stop(kDiagnostics);
         timer_.end_step();
     }
@@ -90,45 +92,55 @@ class Simulation {
     void set_end_time(double t_end) { t_end_ = t_end; }
 
     const Diagnostics& diagnostics() const { return diag_; }
+    // Owned particles are [0, n_owned()); halos (if any) follow.
     const ParticleSet<T>& particles() const { return ps_; }
+    std::size_t n_owned() const { return domain_.n_owned(); }
+    const Domain<T>& domain() const { return domain_; }
+    std::int64_t collective_count() { return domain_.collectives().count(); }
     const Box<T>& box() const { return box_; }
     double time() const { return time_; }
     std::int64_t step_count() const { return step_; }
-    // Longest neighbour list of the last step (symmetric criterion); above ngmax is reported.
+    // Longest neighbour list of the last step on this rank (symmetric criterion).
     std::uint32_t max_list_length() const { return max_list_; }
+    // Owned particles of the most loaded rank over the mean (from the last sync).
+    double imbalance() const {
+        const auto& c = domain_.assignment().count;
+        if (c.empty()) return 1.0;
+        double total = 0, mx = 0;
+        for (auto v : c) {
+            total += double(v);
+            mx = std::max(mx, double(v));
+        }
+        return mx / (total / double(c.size()));
+    }
     const std::array<double, kNumPhases>& phase_times() const { return timer_.step_times(); }
     const std::array<double, kNumPhases>& total_phase_times() const { return timer_.total_times(); }
 
   private:
-    void sort_along_sfc() {
-        fit_open_axes(box_, ps_);
-        keys_ = sort_along_curve(ps_, box_, cfg_.curve);
-    }
-
-    void build_tree() {
-        tree_.build(keys_.data(), std::uint32_t(ps_.size()), std::uint32_t(cfg_.bucket_size));
-        tree_.update_bounds(ps_.data(Field::x), ps_.data(Field::y), ps_.data(Field::z),
-                            ps_.data(Field::h));
-    }
-
     void find_neighbours() {
         SearchView<T> sv{ps_.data(Field::x), ps_.data(Field::y), ps_.data(Field::z),
                          ps_.data(Field::h)};
-        auto res = nlists_.build(tree_, sv, box_, NeighbourCriterion::symmetric,
-                                 std::uint32_t(ps_.size()));
+        auto res = nlists_.build(domain_.local_tree(), &domain_.halo_tree(), sv, box_,
+                                 NeighbourCriterion::symmetric, std::uint32_t(n_owned()));
         max_list_ = res.max_count;
     }
 
+    // SPEC 4: the Tait reference density is the density measured at step 0, per particle.
+    void capture_reference_density() {
+        std::copy_n(ps_[Field::rho].begin(), n_owned(), ps_[Field::rho0].begin());
+    }
+
     // SPEC 7: Courant limit over all particles, at most 1.1 x the previous step; the first step
-    // is the case's dt0 (or less, if the Courant limit demands it).
+    // is the case's dt0 (or less, if the Courant limit demands it). One collective (min).
     double choose_time_step() {
         const T *h = ps_.data(Field::h), *vs = ps_.data(Field::vsig_max), *c = ps_.data(Field::c);
-        const auto n = static_cast<std::int64_t>(ps_.size());
+        const auto n = static_cast<std::int64_t>(n_owned());
         const T courant = T(cfg_.courant);
         double dt_min = std::numeric_limits<double>::max();
 #pragma omp parallel for schedule(static) reduction(min : dt_min)
         for (std::int64_t i = 0; i < n; ++i)
             dt_min = std::min(dt_min, double(courant_time_step(h[i], vs[i], c[i], courant)));
+        dt_min = domain_.collectives().allreduce_min(dt_min);
         double dt = step_ == 0 ? std::min(dt0_, dt_min) : limit_time_step(dt_min, dt_m1_);
         if (t_end_ > 0 && time_ + dt > t_end_) dt = std::max(t_end_ - time_, 0.0);
         return dt;
@@ -137,7 +149,7 @@ class Simulation {
     // SPEC 7: Press scheme for x and v, Adams-Bashforth for u, periodic wrap of x and x_{n-1}.
     void update_state(double dt_d) {
         auto p = make_view(ps_);
-        const auto n = static_cast<std::int64_t>(ps_.size());
+        const auto n = static_cast<std::int64_t>(n_owned());
         const T dt = T(dt_d), dt_m1 = T(dt_m1_);
         const Field pos[3] = {Field::x, Field::y, Field::z};
         const Field prev[3] = {Field::x_m1, Field::y_m1, Field::z_m1};
@@ -162,10 +174,23 @@ class Simulation {
     void update_smoothing_lengths() {
         T* h = ps_.data(Field::h);
         const T* nc = ps_.data(Field::nc);
-        const auto n = static_cast<std::int64_t>(ps_.size());
+        const auto n = static_cast<std::int64_t>(n_owned());
         const T ng0 = T(cfg_.ng0);
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i) h[i] = update_smoothing_length(h[i], nc[i], ng0);
+    }
+
+    // SPEC 10 sums, and the extent of the particles for next step's box: one collective.
+    void diagnose(double dt) {
+        std::vector<SumMax> e(kDiagWithExtent);
+        local_diagnostics(ps_, n_owned(), domain_.n_halo(), e.data());
+        Domain<T>::local_extent(ps_, n_owned(), e.data() + kDiagElements);
+        domain_.collectives().allreduce_sum_max(e);
+        diag_ = diagnostics_from(e.data(), domain_.nranks());
+        diag_.step = step_;
+        diag_.time = time_;
+        diag_.dt = dt;
+        Domain<T>::apply_extent(box_, e.data() + kDiagElements);
     }
 
     Config cfg_;
@@ -173,9 +198,8 @@ class Simulation {
     Box<T> box_;
     EosParams eos_;
     KernelTable<T> kernel_;
-    Octree<T> tree_;
     NeighbourLists<T> nlists_;
-    std::vector<std::uint64_t> keys_;
+    Domain<T> domain_;
     PhaseTimer<kNumPhases> timer_;
     Diagnostics diag_;
     double time_ = 0.0;

@@ -11,7 +11,8 @@
 #include "exasph/tree/neighbour_search.hpp"
 #include "exasph/util/error.hpp"
 
-// OpenMP drivers of the SPH phases: thin loops over particles calling the pure kernels.
+// OpenMP drivers of the SPH phases: thin loops over the particles that have neighbour lists
+// (the owned ones, [0, nl.size())) calling the pure kernels.
 namespace exasph {
 
 inline constexpr int kHydroChunk = 128;
@@ -25,7 +26,7 @@ template <class T>
 void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
                      const KernelView<T>& k) {
     auto p = make_view(ps);
-    const auto n = static_cast<std::int64_t>(ps.size());
+    const auto n = static_cast<std::int64_t>(nl.size());
 #pragma omp parallel for schedule(dynamic, kHydroChunk)
     for (std::int64_t i = 0; i < n; ++i) {
         auto r = density_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k);
@@ -36,9 +37,9 @@ void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<
 }
 
 template <class T>
-void compute_eos(ParticleSet<T>& ps, const EosParams& eos) {
+void compute_eos(ParticleSet<T>& ps, const EosParams& eos, std::size_t n_owned) {
     auto p = make_view(ps);
-    const auto n = static_cast<std::int64_t>(ps.size());
+    const auto n = static_cast<std::int64_t>(n_owned);
     const T gamma = T(eos.gamma), c0 = T(eos.c0);
     const bool tait = eos.kind == EosKind::tait;
 #pragma omp parallel for schedule(static)
@@ -55,7 +56,7 @@ template <class T>
 void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
                  const KernelView<T>& k) {
     auto p = make_view(ps);
-    const auto n = static_cast<std::int64_t>(ps.size());
+    const auto n = static_cast<std::int64_t>(nl.size());
     std::int64_t first_singular = n;
 #pragma omp parallel for schedule(dynamic, kHydroChunk) reduction(min : first_singular)
     for (std::int64_t i = 0; i < n; ++i) {
@@ -79,7 +80,7 @@ template <class T>
 void compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
                              const KernelView<T>& k, T alpha) {
     auto p = make_view(ps);
-    const auto n = static_cast<std::int64_t>(ps.size());
+    const auto n = static_cast<std::int64_t>(nl.size());
 #pragma omp parallel for schedule(dynamic, kHydroChunk)
     for (std::int64_t i = 0; i < n; ++i) {
         auto r = momentum_energy_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box,

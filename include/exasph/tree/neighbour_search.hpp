@@ -63,6 +63,7 @@ std::uint32_t find_neighbours(const Octree<T>& tree, const SearchView<T>& p, con
                               NeighbourCriterion crit, std::uint32_t i, std::uint32_t* out,
                               std::uint32_t cap) {
     const auto& nodes = tree.nodes();
+    if (nodes.empty()) return 0;
     const T pos[3] = {p.x[i], p.y[i], p.z[i]};
     const T hi = p.h[i];
     std::uint32_t count = 0;
@@ -101,9 +102,10 @@ void check_periodic_reach(const Box<T>& box, T hmax) {
     }
 }
 
-// Neighbour lists of all particles with a fixed stride. A particle with more neighbours than the
-// stride is never truncated: the stride grows and the search is repeated (reported by the caller
-// through `grew`).
+// Neighbour lists of the particles of `owned` (the local tree), searched in `owned` and, when
+// given, in `halos` (a tree over the halo particles appended after the owned ones), with a fixed
+// stride. A particle with more neighbours than the stride is never truncated: the stride grows
+// and the search is repeated (reported by the caller through `grew`).
 template <class T>
 class NeighbourLists {
   public:
@@ -114,14 +116,16 @@ class NeighbourLists {
         bool grew = false;
     };
 
-    Result build(const Octree<T>& tree, const SearchView<T>& p, const Box<T>& box,
-                 NeighbourCriterion crit, std::uint32_t n) {
+    Result build(const Octree<T>& owned, const Octree<T>* halos, const SearchView<T>& p,
+                 const Box<T>& box, NeighbourCriterion crit, std::uint32_t n_owned) {
         Result res;
-        check_periodic_reach(box, tree.nodes().empty() ? T(0) : tree.nodes()[0].hmax);
+        T hmax = owned.empty() ? T(0) : owned.nodes()[0].hmax;
+        if (halos && !halos->empty()) hmax = std::max(hmax, halos->nodes()[0].hmax);
+        check_periodic_reach(box, hmax);
         for (;;) {
-            count_.resize(n);
-            index_.resize(static_cast<std::size_t>(n) * stride_);
-            std::uint32_t max_count = search_all(tree, p, box, crit);
+            count_.resize(n_owned);
+            index_.resize(static_cast<std::size_t>(n_owned) * stride_);
+            std::uint32_t max_count = search_all(owned, halos, p, box, crit);
             res.max_count = max_count;
             if (max_count <= stride_) return res;
             stride_ = (max_count + 15) / 16 * 16;
@@ -129,25 +133,33 @@ class NeighbourLists {
         }
     }
 
+    // Without halos (one rank, or tests).
+    Result build(const Octree<T>& tree, const SearchView<T>& p, const Box<T>& box,
+                 NeighbourCriterion crit, std::uint32_t n) {
+        return build(tree, nullptr, p, box, crit, n);
+    }
+
     std::uint32_t stride() const { return stride_; }
+    std::size_t size() const { return count_.size(); }
     std::uint32_t count(std::uint32_t i) const { return count_[i]; }
     const std::uint32_t* list(std::uint32_t i) const {
         return index_.data() + static_cast<std::size_t>(i) * stride_;
     }
-    const std::uint32_t* counts() const { return count_.data(); }
-    const std::uint32_t* indices() const { return index_.data(); }
 
   private:
-    std::uint32_t search_all(const Octree<T>& tree, const SearchView<T>& p, const Box<T>& box,
-                             NeighbourCriterion crit) {
-        const auto& leaves = tree.leaves();
+    std::uint32_t search_all(const Octree<T>& owned, const Octree<T>* halos, const SearchView<T>& p,
+                             const Box<T>& box, NeighbourCriterion crit) {
+        const auto& leaves = owned.leaves();
         std::uint32_t max_count = 0;
 #pragma omp parallel for schedule(dynamic, 8) reduction(max : max_count)
         for (std::size_t l = 0; l < leaves.size(); ++l) {
-            const auto& nd = tree.nodes()[leaves[l]];
+            const auto& nd = owned.nodes()[leaves[l]];
             for (std::uint32_t i = nd.begin; i < nd.end; ++i) {
-                std::uint32_t c = find_neighbours(
-                    tree, p, box, crit, i, index_.data() + std::size_t(i) * stride_, stride_);
+                std::uint32_t* out = index_.data() + std::size_t(i) * stride_;
+                std::uint32_t c = find_neighbours(owned, p, box, crit, i, out, stride_);
+                if (halos)
+                    c += find_neighbours(*halos, p, box, crit, i, out + std::min(c, stride_),
+                                         stride_ - std::min(c, stride_));
                 count_[i] = std::min(c, stride_);
                 max_count = std::max(max_count, c);
             }

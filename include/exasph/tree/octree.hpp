@@ -29,12 +29,19 @@ struct OctreeNode {
 template <class T>
 class Octree {
   public:
-    void build(const std::uint64_t* keys, std::uint32_t n, std::uint32_t bucket_size) {
+    // Builds over the particles [offset, offset + n), whose sorted keys are keys[0, n).
+    void build(const std::uint64_t* keys, std::uint32_t n, std::uint32_t bucket_size,
+               std::uint32_t offset = 0) {
         if (bucket_size == 0) throw Error("octree: bucket size must be positive");
         nodes_.clear();
         leaves_.clear();
+        if (n == 0) return;
         nodes_.push_back({0, n, -1, 0, {}, {}, 0});
         split(0, keys, 0, bucket_size);
+        for (auto& nd : nodes_) {
+            nd.begin += offset;
+            nd.end += offset;
+        }
         for (std::uint32_t i = 0; i < nodes_.size(); ++i)
             if (nodes_[i].first_child < 0) leaves_.push_back(i);
         std::sort(leaves_.begin(), leaves_.end(), [&](std::uint32_t a, std::uint32_t b) {
@@ -45,6 +52,11 @@ class Octree {
     // Tight bounding boxes and maximum h, leaves from the particles, inner nodes from children.
     void update_bounds(const T* x, const T* y, const T* z, const T* h) {
         const T* pos[3] = {x, y, z};
+        update_bounds(pos, pos, h);
+    }
+
+    // Same for items that are boxes [lo, hi] (e.g. the cells of the global tree's leaves).
+    void update_bounds(const T* const lo[3], const T* const hi[3], const T* h) {
 #pragma omp parallel for schedule(static)
         for (std::size_t l = 0; l < leaves_.size(); ++l) {
             auto& nd = nodes_[leaves_[l]];
@@ -55,8 +67,8 @@ class Octree {
             nd.hmax = 0;
             for (std::uint32_t i = nd.begin; i < nd.end; ++i) {
                 for (int d = 0; d < 3; ++d) {
-                    nd.lo[d] = std::min(nd.lo[d], pos[d][i]);
-                    nd.hi[d] = std::max(nd.hi[d], pos[d][i]);
+                    nd.lo[d] = std::min(nd.lo[d], lo[d][i]);
+                    nd.hi[d] = std::max(nd.hi[d], hi[d][i]);
                 }
                 nd.hmax = std::max(nd.hmax, h[i]);
             }
@@ -80,6 +92,9 @@ class Octree {
         }
     }
 
+    bool empty() const {
+        return nodes_.empty();
+    }
     const std::vector<OctreeNode<T>>& nodes() const {
         return nodes_;
     }

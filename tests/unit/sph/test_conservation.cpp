@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "exasph/sim/sfc_order.hpp"
+#include "exasph/domain/sfc_order.hpp"
 #include "exasph/sph/hydro.hpp"
 #include "exasph/sph/sinc_kernel.hpp"
 #include "random_particles.hpp"
@@ -43,7 +43,7 @@ Sums conservation_sums(NeighbourCriterion crit) {
     nl.build(tree, sv, box, crit, std::uint32_t(ps.size()));
     KernelTable<double> k(sinc_kernel(6));
     compute_density(ps, nl, box, k.view());
-    compute_eos(ps, EosParams{});
+    compute_eos(ps, EosParams{}, ps.size());
     compute_iad(ps, nl, box, k.view());
     compute_momentum_energy(ps, nl, box, k.view(), 1.0);
 

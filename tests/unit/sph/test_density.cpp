@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "exasph/sim/sfc_order.hpp"
+#include "exasph/domain/sfc_order.hpp"
 #include "exasph/sph/hydro.hpp"
 #include "exasph/sph/sinc_kernel.hpp"
 #include "random_particles.hpp"

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "brute_force_neighbours.hpp"
-#include "exasph/sim/sfc_order.hpp"
+#include "exasph/domain/sfc_order.hpp"
 #include "exasph/tree/neighbour_search.hpp"
 
 using namespace exasph;

@@ -1,0 +1,196 @@
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <mpi.h>
+
+#include "exasph/domain/collectives.hpp"
+#include "exasph/domain/global_tree.hpp"
+#include "exasph/domain/halo_discovery.hpp"
+#include "exasph/domain/halo_exchange.hpp"
+#include "exasph/domain/particle_exchange.hpp"
+#include "exasph/domain/sfc_order.hpp"
+#include "exasph/particles/particle_set.hpp"
+#include "exasph/sfc/keys.hpp"
+#include "exasph/tree/octree.hpp"
+
+namespace exasph {
+
+// Distributed domain (SPEC 11): the global top tree, the SFC-range assignment, migration, halo
+// discovery and halo exchange. After sync():
+//   owned particles [0, n_owned) in SFC order (ties by id), halos [n_owned, n_owned + n_halo)
+//   grouped by source rank, local_tree() over the owned, halo_tree() over the halos.
+// It moves whatever fields it is asked to (by role), and never names a physics field.
+template <class T>
+class Domain {
+  public:
+    Domain(MPI_Comm comm, std::uint32_t global_bucket, std::uint32_t leaf_size, CurveKind curve)
+        : coll_(comm), global_bucket_(global_bucket), leaf_size_(leaf_size), curve_(curve) {}
+
+    // Start-up only (collectives here are not on the hot path): fits the open axes of the box to
+    // all particles and refines the global tree until no leaf exceeds the global bucket size.
+    void init(ParticleSet<T>& ps, Box<T>& box) {
+        n_owned_ = ps.size();
+        std::vector<SumMax> ext(6);
+        local_extent(ps, n_owned_, ext.data());
+        coll_.allreduce_sum_max(ext);
+        apply_extent(box, ext.data());
+        for (int iter = 0; iter < 64; ++iter) {
+            auto keys = compute_keys(ps, box);
+            auto leaf = leaves_of(keys);
+            auto counts = global_counts(ps, leaf);
+            if (!tree_.refine(counts, global_bucket_)) {
+                assign_leaves(counts, coll_.size()); // more ranks than leaves fail here, early
+                return;
+            }
+        }
+        throw Error("domain: the global tree did not converge");
+    }
+
+    // Migration, SFC sort, local tree, halo discovery and the exchange of the kHaloSync fields.
+    // Uses exactly one collective (the global tree counts and maximum h).
+    void sync(ParticleSet<T>& ps, const Box<T>& box) {
+        ps.resize(n_owned_); // drop last step's halos
+        auto keys = compute_keys(ps, box);
+        auto leaf = leaves_of(keys);
+        auto counts = global_counts(ps, leaf);
+        asg_ = assign_leaves(counts, coll_.size());
+        asg_.leaf_keys = tree_.keys();
+        asg_.leaf_count = counts;
+        std::vector<int> dest(ps.size());
+        for (std::size_t i = 0; i < ps.size(); ++i) dest[i] = asg_.owner[leaf[i]];
+        migrate_particles(ps, dest, coll_.rank(), coll_.size(), asg_.count[coll_.rank()],
+                          coll_.comm(), kTagMigrate);
+        n_owned_ = ps.size();
+        keys = sort_along_curve(ps, box, curve_);
+        local_tree_.build(keys.data(), std::uint32_t(n_owned_), leaf_size_);
+        local_tree_.update_bounds(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
+                                  ps.data(Field::h));
+        discover_halos(ps, box);
+        tree_.refine(counts, global_bucket_); // for the next step; counts belong to this tree
+    }
+
+    // Sends the fields carrying `roles` from owners to the halo copies.
+    void exchange_halos(ParticleSet<T>& ps, std::uint8_t roles) {
+        exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{fields_with_role(roles), false},
+                             coll_.comm(), kTagHalo);
+    }
+
+    std::size_t n_owned() const { return n_owned_; }
+    std::size_t n_halo() const { return plan_.n_halo; }
+    const Octree<T>& local_tree() const { return local_tree_; }
+    const Octree<T>& halo_tree() const { return halo_tree_; }
+    const Assignment& assignment() const { return asg_; }
+    const GlobalTree& global_tree() const { return tree_; }
+    const HaloPlan& halo_plan() const { return plan_; }
+    Collectives& collectives() { return coll_; }
+    int rank() const { return coll_.rank(); }
+    int nranks() const { return coll_.size(); }
+
+    // Local min/max of the owned positions as six SumMax elements (max of hi, max of -lo).
+    static void local_extent(const ParticleSet<T>& ps, std::size_t n, SumMax* out) {
+        for (int d = 0; d < 3; ++d) {
+            const T* c = ps.data(static_cast<Field>(static_cast<int>(Field::x) + d));
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+#pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi)
+            for (std::size_t i = 0; i < n; ++i) {
+                lo = std::min(lo, double(c[i]));
+                hi = std::max(hi, double(c[i]));
+            }
+            out[d] = {0.0, hi};
+            out[3 + d] = {0.0, -lo};
+        }
+    }
+
+    // Fits the open axes of the box to a reduced extent (periodic axes keep their period).
+    static void apply_extent(Box<T>& box, const SumMax* ext) {
+        for (int d = 0; d < 3; ++d) {
+            if (box.periodic[d]) continue;
+            double hi = ext[d].max, lo = -ext[3 + d].max;
+            double pad = 1e-6 * std::max(hi - lo, 1e-30) + 1e-300;
+            box.lo[d] = T(lo - pad);
+            box.hi[d] = T(hi + pad);
+        }
+    }
+
+  private:
+    static constexpr int kTagMigrate = 7101;
+    static constexpr int kTagHaloCount = 7102;
+    static constexpr int kTagHalo = 7103;
+
+    std::vector<std::uint64_t> compute_keys(const ParticleSet<T>& ps, const Box<T>& box) const {
+        std::vector<std::uint64_t> keys(n_owned_);
+        const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n_owned_; ++i) keys[i] = sfc_key(x[i], y[i], z[i], box, curve_);
+        return keys;
+    }
+
+    std::vector<std::uint32_t> leaves_of(const std::vector<std::uint64_t>& keys) const {
+        std::vector<std::uint32_t> leaf(keys.size());
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < keys.size(); ++i) leaf[i] = tree_.leaf_of(keys[i]);
+        return leaf;
+    }
+
+    // The one hot-path collective of the sync: particle count (sum) and maximum h (max) per leaf.
+    std::vector<std::uint64_t> global_counts(const ParticleSet<T>& ps,
+                                             const std::vector<std::uint32_t>& leaf) {
+        const std::size_t nl = tree_.num_leaves();
+        std::vector<SumMax> stat(nl);
+        const T* h = ps.data(Field::h);
+        for (std::size_t i = 0; i < leaf.size(); ++i) {
+            stat[leaf[i]].sum += 1.0;
+            stat[leaf[i]].max = std::max(stat[leaf[i]].max, double(h[i]));
+        }
+        coll_.allreduce_sum_max(stat);
+        std::vector<std::uint64_t> counts(nl);
+        leaf_hmax_.resize(nl);
+        for (std::size_t l = 0; l < nl; ++l) {
+            counts[l] = std::uint64_t(stat[l].sum);
+            leaf_hmax_[l] = stat[l].sum > 0 ? T(stat[l].max) : T(0);
+        }
+        return counts;
+    }
+
+    void discover_halos(ParticleSet<T>& ps, const Box<T>& box) {
+        plan_ = HaloPlan{};
+        halo_tree_.build(nullptr, 0, leaf_size_);
+        if (coll_.size() == 1) return;
+        index_.build(tree_, leaf_hmax_, asg_, box, curve_);
+        plan_.partners = halo_partners(index_, asg_, coll_.rank(), box);
+        plan_halo_sends(plan_, index_, local_tree_, ps.data(Field::x), ps.data(Field::y),
+                        ps.data(Field::z), ps.data(Field::h), coll_.rank(), box);
+        exchange_halo_counts(plan_, coll_.comm(), kTagHaloCount);
+        ps.resize(n_owned_ + plan_.n_halo);
+        exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{fields_with_role(kHaloSync), true},
+                             coll_.comm(), kTagHalo);
+        // Sources own ascending key ranges and send in SFC order: the halos arrive sorted.
+        std::vector<std::uint64_t> hkeys(plan_.n_halo);
+        for (std::size_t k = 0; k < plan_.n_halo; ++k) {
+            std::size_t i = n_owned_ + k;
+            hkeys[k] = sfc_key(ps[Field::x][i], ps[Field::y][i], ps[Field::z][i], box, curve_);
+        }
+        if (!std::is_sorted(hkeys.begin(), hkeys.end()))
+            throw Error("domain: halos did not arrive in SFC order");
+        halo_tree_.build(hkeys.data(), std::uint32_t(plan_.n_halo), leaf_size_,
+                         std::uint32_t(n_owned_));
+        halo_tree_.update_bounds(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
+                                 ps.data(Field::h));
+    }
+
+    Collectives coll_;
+    std::uint32_t global_bucket_, leaf_size_;
+    CurveKind curve_;
+    GlobalTree tree_;
+    Assignment asg_;
+    std::vector<T> leaf_hmax_;
+    LeafIndex<T> index_;
+    HaloPlan plan_;
+    Octree<T> local_tree_, halo_tree_;
+    std::size_t n_owned_ = 0;
+};
+
+} // namespace exasph

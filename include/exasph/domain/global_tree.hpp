@@ -1,0 +1,148 @@
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "exasph/sfc/keys.hpp"
+#include "exasph/util/box.hpp"
+#include "exasph/util/error.hpp"
+
+namespace exasph {
+
+inline constexpr std::uint64_t kKeyEnd = std::uint64_t(1) << (3 * kKeyBitsPerAxis);
+
+// Leaves of the global (top) tree, identical on every rank: leaf i covers the SFC keys
+// [keys[i], keys[i+1]); each leaf is one octree cell (its key range is 8^k long and aligned).
+// Invariant: keys[0] = 0, keys.back() = 2^63, strictly increasing.
+class GlobalTree {
+  public:
+    GlobalTree() : keys_{0, kKeyEnd} {}
+
+    std::size_t num_leaves() const { return keys_.size() - 1; }
+    const std::vector<std::uint64_t>& keys() const { return keys_; }
+
+    // The leaf holding `key`.
+    std::uint32_t leaf_of(std::uint64_t key) const {
+        auto it = std::upper_bound(keys_.begin(), keys_.end(), key);
+        return static_cast<std::uint32_t>(it - keys_.begin() - 1);
+    }
+
+    // Octree level of a leaf (0 = root cell).
+    int level(std::size_t leaf) const {
+        std::uint64_t size = keys_[leaf + 1] - keys_[leaf];
+        int l = kKeyBitsPerAxis;
+        while (size > 1) {
+            size >>= 3;
+            --l;
+        }
+        return l;
+    }
+
+    // Rebuilds the leaves from global counts: a leaf with more than `bucket` particles is split
+    // into its eight children; eight sibling leaves holding at most bucket/2 together merge into
+    // their parent (the gap to `bucket` stops split/merge oscillation). Returns true on change.
+    bool refine(const std::vector<std::uint64_t>& counts, std::uint64_t bucket) {
+        std::vector<std::uint64_t> next;
+        next.reserve(keys_.size());
+        bool changed = false;
+        const std::size_t n = num_leaves();
+        for (std::size_t i = 0; i < n;) {
+            if (mergeable(i, counts, bucket)) {
+                next.push_back(keys_[i]);
+                i += 8;
+                changed = true;
+                continue;
+            }
+            std::uint64_t size = keys_[i + 1] - keys_[i];
+            if (counts[i] > bucket && size > 1) {
+                for (int c = 0; c < 8; ++c) next.push_back(keys_[i] + c * (size / 8));
+                changed = true;
+            } else {
+                next.push_back(keys_[i]);
+            }
+            ++i;
+        }
+        next.push_back(kKeyEnd);
+        keys_.swap(next);
+        return changed;
+    }
+
+    // Cell of a leaf as an axis-aligned box in physical coordinates.
+    template <class T>
+    void cell_box(std::size_t leaf, const Box<T>& box, CurveKind curve, T lo[3], T hi[3]) const {
+        auto c =
+            curve == CurveKind::hilbert ? hilbert_decode(keys_[leaf]) : morton_decode(keys_[leaf]);
+        const int shift = kKeyBitsPerAxis - level(leaf);
+        const std::uint32_t mask = ~((1u << shift) - 1u);
+        for (int d = 0; d < 3; ++d) {
+            const double scale = double(box.hi[d] - box.lo[d]) / double(kKeyAxisMax + 1);
+            const std::uint32_t origin = c[d] & mask;
+            lo[d] = T(box.lo[d] + origin * scale);
+            hi[d] = T(box.lo[d] + (double(origin) + double(1u << shift)) * scale);
+        }
+    }
+
+  private:
+    bool mergeable(std::size_t i, const std::vector<std::uint64_t>& counts,
+                   std::uint64_t bucket) const {
+        if (i + 8 > num_leaves()) return false;
+        std::uint64_t size = keys_[i + 1] - keys_[i];
+        std::uint64_t parent = size * 8;
+        if (parent > kKeyEnd || keys_[i] % parent != 0) return false;
+        std::uint64_t total = 0;
+        for (int c = 0; c < 8; ++c) {
+            if (keys_[i + c + 1] - keys_[i + c] != size) return false;
+            total += counts[i + c];
+        }
+        return 2 * total <= bucket;
+    }
+
+    std::vector<std::uint64_t> keys_;
+};
+
+// Contiguous leaf ranges per rank with balanced particle counts: rank r owns leaves
+// [first_leaf[r], first_leaf[r+1]). Each boundary is the leaf boundary nearest to r N / P, so
+// the imbalance is at most the largest leaf count.
+struct Assignment {
+    std::vector<std::uint32_t> first_leaf; // size P + 1
+    std::vector<std::uint64_t> count;      // particles per rank
+    std::vector<int> owner;                // owning rank per leaf
+    std::vector<std::uint64_t> leaf_keys;  // the global leaves this assignment refers to
+    std::vector<std::uint64_t> leaf_count; // global particle count per leaf
+
+    int owner_of_leaf(std::uint32_t leaf) const { return owner[leaf]; }
+};
+
+inline Assignment assign_leaves(const std::vector<std::uint64_t>& counts, int nranks) {
+    const std::size_t nleaves = counts.size();
+    std::vector<std::uint64_t> cum(nleaves + 1, 0);
+    for (std::size_t i = 0; i < nleaves; ++i) cum[i + 1] = cum[i] + counts[i];
+    const std::uint64_t total = cum.back();
+    Assignment a;
+    a.first_leaf.assign(nranks + 1, 0);
+    a.first_leaf[nranks] = std::uint32_t(nleaves);
+    for (int r = 1; r < nranks; ++r) {
+        const double target = double(total) * r / nranks;
+        auto it = std::lower_bound(cum.begin(), cum.end(), std::uint64_t(target));
+        std::size_t b = std::size_t(it - cum.begin());
+        if (b > 0 && target - double(cum[b - 1]) < double(cum[b]) - target) --b;
+        a.first_leaf[r] = std::uint32_t(std::max<std::size_t>(b, a.first_leaf[r - 1]));
+    }
+    a.count.resize(nranks);
+    a.owner.resize(nleaves);
+    for (int r = 0; r < nranks; ++r) {
+        a.count[r] = cum[a.first_leaf[r + 1]] - cum[a.first_leaf[r]];
+        for (std::uint32_t l = a.first_leaf[r]; l < a.first_leaf[r + 1]; ++l) a.owner[l] = r;
+        if (a.count[r] == 0)
+            throw input_error("domain decomposition: rank " + std::to_string(r) +
+                                  " would own no particles (" + std::to_string(total) +
+                                  " particles, " + std::to_string(nleaves) + " global leaves, " +
+                                  std::to_string(nranks) +
+                                  " ranks): use fewer ranks or a smaller --global-bucket",
+                              true);
+    }
+    return a;
+}
+
+} // namespace exasph

@@ -1,0 +1,73 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <mpi.h>
+
+#include "exasph/domain/particle_exchange.hpp"
+
+namespace exasph {
+
+// Who exchanges halos with whom, and which particles. Halo particles are stored after the owned
+// ones, grouped by partner rank in ascending order, each group in the sender's (SFC) order.
+struct HaloPlan {
+    std::vector<int> partners;                    // ascending ranks
+    std::vector<std::vector<std::uint32_t>> send; // per partner: owned indices sent there
+    std::vector<std::uint64_t> recv_count;        // per partner
+    std::vector<std::uint64_t> recv_offset;       // per partner, relative to the first halo
+    std::uint64_t n_halo = 0;
+};
+
+// Learns how many halos each partner sends (point-to-point with partners only).
+inline void exchange_halo_counts(HaloPlan& plan, MPI_Comm comm, int tag) {
+    const std::size_t np = plan.partners.size();
+    std::vector<std::uint64_t> send_count(np);
+    plan.recv_count.assign(np, 0);
+    std::vector<MPI_Request> reqs(2 * np);
+    for (std::size_t k = 0; k < np; ++k) {
+        send_count[k] = plan.send[k].size();
+        MPI_Irecv(&plan.recv_count[k], 1, MPI_UINT64_T, plan.partners[k], tag, comm, &reqs[k]);
+        MPI_Isend(&send_count[k], 1, MPI_UINT64_T, plan.partners[k], tag, comm, &reqs[np + k]);
+    }
+    MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
+    plan.recv_offset.resize(np);
+    plan.n_halo = 0;
+    for (std::size_t k = 0; k < np; ++k) {
+        plan.recv_offset[k] = plan.n_halo;
+        plan.n_halo += plan.recv_count[k];
+    }
+}
+
+// Sends the selected fields of the planned particles to every partner and receives the partners'
+// halos into [n_owned, n_owned + n_halo) (MPI_Isend / MPI_Irecv, partners only).
+template <class T>
+void exchange_halo_fields(ParticleSet<T>& ps, std::size_t n_owned, const HaloPlan& plan,
+                          const FieldSelection& sel, MPI_Comm comm, int tag) {
+    const std::size_t np = plan.partners.size();
+    const std::size_t per = sel.doubles_per_particle();
+    std::vector<std::vector<double>> recv(np), send(np);
+    std::vector<MPI_Request> reqs;
+    reqs.reserve(2 * np);
+    for (std::size_t k = 0; k < np; ++k) {
+        if (plan.recv_count[k] == 0) continue;
+        recv[k].resize(plan.recv_count[k] * per);
+        reqs.emplace_back();
+        MPI_Irecv(recv[k].data(), int(recv[k].size()), MPI_DOUBLE, plan.partners[k], tag, comm,
+                  &reqs.back());
+    }
+    for (std::size_t k = 0; k < np; ++k) {
+        if (plan.send[k].empty()) continue;
+        send[k].resize(plan.send[k].size() * per);
+        pack_particles(ps, plan.send[k].data(), plan.send[k].size(), sel, send[k].data());
+        reqs.emplace_back();
+        MPI_Isend(send[k].data(), int(send[k].size()), MPI_DOUBLE, plan.partners[k], tag, comm,
+                  &reqs.back());
+    }
+    MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
+    for (std::size_t k = 0; k < np; ++k)
+        if (plan.recv_count[k] > 0)
+            unpack_particles(ps, n_owned + plan.recv_offset[k], plan.recv_count[k], sel,
+                             recv[k].data());
+}
+
+} // namespace exasph
