@@ -20,25 +20,25 @@ for r in $(seq "$repeats"); do
 done
 
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
-field() { # LOGLINE-REGEX AWK-FIELD
-    for r in $(seq "$repeats"); do grep "$1" "$out/log$r" | awk "{print \$$2}" | tr -d ,; done | median
+value() { # SED-REGEX with one group: the number it captures, median over the runs
+    for r in $(seq "$repeats"); do sed -nE "s|.*$1.*|\1|p" "$out/log$r"; done | median
 }
 echo "command: exasph --init square-patch -n $side -s $steps --threads $threads (median of $repeats)"
 echo
 echo "| particles | threads | particle-steps/s | per core | peak RSS B/particle |"
 echo "|---|---|---|---|---|"
 n=$(grep -o '[0-9]* particles' "$out/log1" | awk '{print $1}')
-echo "| $n | $threads | $(field 'particle-steps/s' 2) | $(field 'particle-steps/s' 5) |" \
-     "$(field 'peak RSS' 10) |"
+echo "| $n | $threads | $(value 'particle-steps/s ([0-9.e+-]+),') |" \
+     "$(value 'per core ([0-9.e+-]+) ') | $(value 'peak RSS ([0-9.]+) B') |"
 echo
 echo "| phase | s/step (median) |"
 echo "|---|---|"
-phases=$(grep 'seconds per step by phase' "$out/log1" | sed 's/.*phase: //')
+phases=$(grep 'seconds per step by phase' "$out/log1" | sed 's/.*phase[^:]*: //')
 set -- $phases
 while [ $# -ge 2 ]; do
     name=$1
     vals=$(for r in $(seq "$repeats"); do
-        grep 'seconds per step by phase' "$out/log$r" | sed 's/.*phase: //' |
+        grep 'seconds per step by phase' "$out/log$r" | sed 's/.*phase[^:]*: //' |
             awk -v k="$name" '{for (i = 1; i < NF; i += 2) if ($i == k) print $(i+1)}'
     done | median)
     echo "| $name | $vals |"
