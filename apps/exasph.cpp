@@ -1,4 +1,5 @@
 // exasph command line: options -> Config -> run().
+#include <algorithm>
 #include <iostream>
 #include <string>
 
@@ -6,6 +7,7 @@
 #include <mpi.h>
 
 #include "exasph/build_info.hpp"
+#include "exasph/cases/file_case.hpp"
 #include "exasph/sim/cases.hpp"
 #include "exasph/sim/run.hpp"
 #include "exasph/sph/sinc_kernel.hpp"
@@ -32,20 +34,80 @@ CLI::Validator sign_check(bool allow_zero) {
         allow_zero ? "NONNEGATIVE" : "POSITIVE");
 }
 
+std::string case_list() {
+    std::string s;
+    for (const auto& n : exasph::case_names()) s += (s.empty() ? "" : ", ") + n;
+    return s;
+}
+
+// --init: a known case name or something that names an HDF5 file.
+CLI::Validator init_check() {
+    return CLI::Validator(
+        [](std::string& v) -> std::string {
+            const auto& names = exasph::case_names();
+            if (std::find(names.begin(), names.end(), v) != names.end()) return {};
+            if (exasph::names_a_file(v)) return {};
+            return "unknown case '" + v + "' (known: " + case_list() + ", or a file *.h5)";
+        },
+        "CASE|FILE.h5");
+}
+
+// -w N (every N steps) or -w T (every T of physical time).
+void parse_write_every(const std::string& v, exasph::Config& cfg) {
+    std::size_t used = 0;
+    double x = 0;
+    try {
+        x = std::stod(v, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != v.size() || !(x > 0))
+        throw CLI::ValidationError("-w", "'" + v + "' is not a positive step count or time");
+    if (v.find_first_of(".eE") == std::string::npos)
+        cfg.snapshot_every_steps = std::int64_t(x);
+    else
+        cfg.snapshot_every_time = x;
+}
+
 void add_options(CLI::App& app, exasph::Config& cfg) {
-    app.add_option("--init", cfg.init, "Initial conditions: name of a test case")
-        ->check(CLI::IsMember(exasph::case_names()))
+    app.add_option("--init", cfg.init,
+                   "Initial conditions: a test case (" + case_list() +
+                       ") or an HDF5 file *.h5 (docs/file-format.md)")
+        ->check(init_check())
         ->capture_default_str();
     app.add_option("-n", cfg.side, "Particles per axis (about n^3 particles)")
         ->check(CLI::Range(2, 1000))
         ->capture_default_str();
-    app.add_option("-s,--steps", cfg.steps, "Number of steps to run")->check(sign_check(true));
+    app.add_option("-s,--steps", cfg.steps,
+                   "Stop after step N (counted from the start of the simulation, across restarts)")
+        ->check(sign_check(true));
     app.add_option("--t-end", cfg.t_end,
                    "Physical end time; with -s the run stops at whichever comes first "
                    "(default: the case's end time when -s is not given)")
         ->check(sign_check(false));
-    app.add_option("--out", cfg.out_dir, "Output directory (diagnostics.csv)")
+    app.add_option("--out", cfg.out_dir,
+                   "Output directory (diagnostics.csv, snapshots, checkpoints)")
         ->capture_default_str();
+    app.add_option_function<std::string>(
+           "-w,--write-every", [&cfg](const std::string& v) { parse_write_every(v, cfg); },
+           "Snapshots: every N steps (an integer), or every T of physical time (a number "
+           "with a decimal point or exponent, written at the first step at or after each "
+           "multiple of T)")
+        ->type_name("N|T");
+    app.add_option("-f,--fields", cfg.snapshot_fields,
+                   "Snapshot fields, comma-separated (default: x,y,z,vx,vy,vz,h,m,u,rho,p,c,ax,"
+                   "ay,az,du,nc); x,y,z are always written")
+        ->delimiter(',');
+    app.add_option("--checkpoint-every", cfg.checkpoint_every,
+                   "Write a checkpoint every N steps (also at the end of the run)")
+        ->check(sign_check(false));
+    app.add_option("--checkpoint-minutes", cfg.checkpoint_minutes,
+                   "Write a checkpoint every M minutes of wall-clock time")
+        ->check(sign_check(false));
+    app.add_option("--restart", cfg.restart_file,
+                   "Continue the run saved in this checkpoint (any rank count); physics "
+                   "options come from the checkpoint")
+        ->check(CLI::ExistingFile);
     app.add_option("--ng0", cfg.ng0, "Target number of neighbours")
         ->check(CLI::Range(10.0, 1000.0))
         ->capture_default_str();
@@ -119,6 +181,16 @@ int main(int argc, char** argv) {
         return code;
     } catch (const CLI::ParseError& e) {
         return finish_with_error(std::string(e.what()) + " (see exasph --help)", 2, true);
+    }
+    if (!cfg.restart_file.empty()) {
+        for (const char* opt :
+             {"--init", "-n", "--ng0", "--ngmax", "--kernel-exponent", "--courant", "--alpha",
+              "--global-bucket", "--leaf-size", "--curve"})
+            if (app.count(opt) > 0)
+                return finish_with_error(std::string(opt) +
+                                             " cannot be changed on --restart (the checkpoint "
+                                             "holds the physics parameters)",
+                                         2, true);
     }
     if (cfg.ngmax < cfg.ng0)
         return finish_with_error("--ngmax " + std::to_string(cfg.ngmax) +

@@ -6,7 +6,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${EXASPH_BUILD_DIR:-$root/build}"
 
 packages=(cmake g++ make ninja-build libgtest-dev libbenchmark-dev libcli11-dev libopenmpi-dev
-          openmpi-bin)
+          openmpi-bin libhdf5-openmpi-dev python3 python3-numpy python3-h5py python3-matplotlib)
 if command -v dpkg >/dev/null 2>&1; then
     missing=()
     for p in "${packages[@]}"; do

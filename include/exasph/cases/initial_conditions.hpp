@@ -15,8 +15,9 @@ struct InitialConditions {
     ParticleSet<T> particles;
     Box<T> box;
     EosParams eos;
-    double dt0 = 1e-6;  // first time step; also sets x_{-1} = x_0 - v_0 dt0
-    double t_end = 0.0; // default end time of the case
+    double dt0 = 1e-6;                // first time step; also sets x_{-1} = x_0 - v_0 dt0
+    double t_end = 0.0;               // default end time of the case
+    std::string units = "code units"; // unit system of all fields, written to outputs
 };
 
 } // namespace exasph

@@ -49,6 +49,7 @@ InitialConditions<T> make_square_patch(const SquarePatchParams& sp, int rank = 0
     ic.name = "square-patch";
     ic.dt0 = sp.dt0;
     ic.t_end = sp.t_end;
+    ic.units = "cgs (cm, g, s)";
     ic.eos = {EosKind::tait, 5.0 / 3.0, sp.sound_speed};
     const double half = 0.5 * sp.length;
     ic.box.lo = {T(-half), T(-half), T(-half)};

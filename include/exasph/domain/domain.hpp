@@ -49,6 +49,13 @@ class Domain {
         throw Error("domain: the global tree did not converge");
     }
 
+    // Restart: continues with the global tree of the run that wrote the checkpoint, so that the
+    // decomposition (and with it the summation order) is the one the uninterrupted run had.
+    void restore(ParticleSet<T>& ps, std::vector<std::uint64_t> leaf_keys) {
+        n_owned_ = ps.size();
+        tree_.set_keys(std::move(leaf_keys));
+    }
+
     // Migration, SFC sort, local tree, halo discovery and the exchange of the kHaloSync fields.
     // Uses exactly one collective (the global tree counts and maximum h).
     void sync(ParticleSet<T>& ps, const Box<T>& box) {

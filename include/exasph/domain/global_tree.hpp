@@ -19,6 +19,18 @@ class GlobalTree {
   public:
     GlobalTree() : keys_{0, kKeyEnd} {}
 
+    // Restores leaves saved from another run (checkpoint); throws if they are not a valid tiling.
+    void set_keys(std::vector<std::uint64_t> keys) {
+        bool ok = keys.size() >= 2 && keys.front() == 0 && keys.back() == kKeyEnd;
+        for (std::size_t i = 0; ok && i + 1 < keys.size(); ++i) {
+            std::uint64_t size = keys[i + 1] - keys[i];
+            ok = keys[i] < keys[i + 1] && (size & (size - 1)) == 0 && keys[i] % size == 0;
+        }
+        if (!ok)
+            throw input_error("global tree leaves in the checkpoint are not a valid tiling", true);
+        keys_ = std::move(keys);
+    }
+
     std::size_t num_leaves() const { return keys_.size() - 1; }
     const std::vector<std::uint64_t>& keys() const { return keys_; }
 

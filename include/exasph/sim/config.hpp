@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "exasph/sfc/keys.hpp"
 
@@ -22,6 +23,14 @@ struct Config {
     int bucket_size = 64;       // local octree leaf size
     int global_bucket = 128;    // global (top) tree leaf size: the unit of MPI load balance
     CurveKind curve = CurveKind::hilbert;
+
+    // Output and restart (issue 4).
+    std::int64_t snapshot_every_steps = -1;   // -w N
+    double snapshot_every_time = -1.0;        // -w T
+    std::vector<std::string> snapshot_fields; // -f; empty: the snapshot fields of the field list
+    std::int64_t checkpoint_every = -1;       // --checkpoint-every N
+    double checkpoint_minutes = -1.0;         // --checkpoint-minutes M
+    std::string restart_file;                 // --restart FILE
 };
 
 } // namespace exasph

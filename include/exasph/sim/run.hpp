@@ -1,5 +1,6 @@
 #pragma once
 #include <cmath>
+#include <csignal>
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
@@ -17,7 +18,9 @@
 
 #include "exasph/build_info.hpp"
 #include "exasph/sim/cases.hpp"
+#include "exasph/sim/checkpoint.hpp"
 #include "exasph/sim/simulation.hpp"
+#include "exasph/sim/snapshot.hpp"
 #include "exasph/util/memory.hpp"
 
 namespace exasph {
@@ -42,8 +45,10 @@ inline int thread_count() {
 // diagnostics.csv: one row per step with the SPEC 10 quantities and the phase times.
 class DiagnosticsCsv {
   public:
-    explicit DiagnosticsCsv(const std::filesystem::path& path) : out_(path) {
+    DiagnosticsCsv(const std::filesystem::path& path, bool append)
+        : out_(path, append ? std::ios::app : std::ios::trunc) {
         if (!out_) throw Error("cannot write " + path.string(), 3);
+        if (append && std::filesystem::file_size(path) > 0) return;
         out_ << "step,time,dt,n,ekin,eint,epot,etot,px,py,pz,lx,ly,lz,nc_min,nc_mean,nc_max";
         for (auto name : kPhaseNames) out_ << ",t_" << name;
         out_ << "\n";
@@ -65,8 +70,9 @@ class DiagnosticsCsv {
     std::ofstream out_;
 };
 
-// Opens diagnostics.csv on rank 0; every rank learns whether that worked (start-up broadcast).
-inline std::unique_ptr<DiagnosticsCsv> open_diagnostics(const Config& cfg, bool root) {
+// Opens diagnostics.csv on rank 0 (appending when a restart continues in the same directory);
+// every rank learns whether that worked (start-up broadcast).
+inline std::unique_ptr<DiagnosticsCsv> open_diagnostics(const Config& cfg, bool root, bool append) {
     std::unique_ptr<DiagnosticsCsv> csv;
     std::string err;
     if (root) {
@@ -77,7 +83,7 @@ inline std::unique_ptr<DiagnosticsCsv> open_diagnostics(const Config& cfg, bool 
             err = "--out: cannot create directory '" + cfg.out_dir + "': " + ec.message();
         else {
             try {
-                csv = std::make_unique<DiagnosticsCsv>(dir / "diagnostics.csv");
+                csv = std::make_unique<DiagnosticsCsv>(dir / "diagnostics.csv", append);
             } catch (const Error& e) {
                 err = e.what();
             }
@@ -89,9 +95,66 @@ inline std::unique_ptr<DiagnosticsCsv> open_diagnostics(const Config& cfg, bool 
     return csv;
 }
 
+namespace detail {
+inline volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" inline void on_stop_signal(int signum) {
+    g_stop_signal = signum;
+}
+} // namespace detail
+
+// When snapshots and checkpoints are due (-w, --checkpoint-every, --checkpoint-minutes).
+class OutputSchedule {
+  public:
+    OutputSchedule(const Config& cfg, double t_now) : cfg_(cfg) {
+        if (cfg.snapshot_every_time > 0)
+            next_snapshot_time_ =
+                (std::floor(t_now / cfg.snapshot_every_time) + 1) * cfg.snapshot_every_time;
+    }
+    bool checkpointing() const { return cfg_.checkpoint_every > 0 || cfg_.checkpoint_minutes > 0; }
+    bool clock_due(double wall_now) const {
+        return cfg_.checkpoint_minutes > 0 &&
+               wall_now - last_checkpoint_wall_ >= 60.0 * cfg_.checkpoint_minutes;
+    }
+    void checkpoint_written(double wall_now) { last_checkpoint_wall_ = wall_now; }
+    bool checkpoint_due(std::int64_t step) const {
+        return cfg_.checkpoint_every > 0 && step % cfg_.checkpoint_every == 0;
+    }
+    // Every N steps, or at the first step at or after each multiple of T.
+    bool snapshot_due(std::int64_t step, double t) {
+        if (cfg_.snapshot_every_steps > 0) return step % cfg_.snapshot_every_steps == 0;
+        if (cfg_.snapshot_every_time <= 0 || t < next_snapshot_time_ * (1 - 1e-12)) return false;
+        while (next_snapshot_time_ <= t * (1 + 1e-12))
+            next_snapshot_time_ += cfg_.snapshot_every_time;
+        return true;
+    }
+
+  private:
+    const Config& cfg_;
+    double next_snapshot_time_ = 0;
+    double last_checkpoint_wall_ = wall_seconds();
+};
+
+// Builds the simulation from a test case, an initial-conditions file or a checkpoint.
+inline std::unique_ptr<Simulation<double>> make_simulation(Config& cfg, std::string& units,
+                                                           double& case_t_end) {
+    int rank = 0, nranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+    if (!cfg.restart_file.empty()) {
+        auto cp = read_checkpoint<double>(cfg.restart_file, cfg, MPI_COMM_WORLD);
+        units = cp.ic.units;
+        case_t_end = cp.ic.t_end;
+        return std::make_unique<Simulation<double>>(cfg, std::move(cp.ic), cp.rs);
+    }
+    auto ic = make_case<double>(cfg, rank, nranks);
+    units = ic.units;
+    case_t_end = ic.t_end;
+    return std::make_unique<Simulation<double>>(cfg, std::move(ic));
+}
+
 // Runs a whole simulation as configured on all ranks of MPI_COMM_WORLD; rank 0 prints the
 // header, one row per step and a summary. Returns the exit code; errors are thrown as Error.
-inline int run(const Config& cfg, std::ostream& out) {
+inline int run(Config cfg, std::ostream& out) {
 #ifdef _OPENMP
     if (cfg.threads > 0) omp_set_num_threads(cfg.threads);
 #endif
@@ -99,33 +162,60 @@ inline int run(const Config& cfg, std::ostream& out) {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
     const bool root = rank == 0;
-    auto ic = make_case<double>(cfg, rank, nranks);
-    const double t_end = cfg.t_end > 0 ? cfg.t_end : (cfg.steps < 0 ? ic.t_end : -1.0);
-    auto csv = open_diagnostics(cfg, root);
+    const auto fields = snapshot_field_list(cfg.snapshot_fields);
+    std::string units;
+    double case_t_end = 0;
+    auto sim_ptr = make_simulation(cfg, units, case_t_end);
+    Simulation<double>& sim = *sim_ptr;
+    const double t_end = cfg.t_end > 0 ? cfg.t_end : (cfg.steps < 0 ? case_t_end : -1.0);
+    if (t_end <= 0 && cfg.steps < 0)
+        throw input_error("no end: give -s STEPS or --t-end T (the initial conditions set none)",
+                          true);
+    auto csv = open_diagnostics(cfg, root, !cfg.restart_file.empty());
 
-    Simulation<double> sim(cfg, std::move(ic));
     const std::uint64_t n = sim.diagnostics().n;
     if (root) {
         out << "exasph " << kVersion << " (" << kBuildInfo << ")\n";
-        out << strprintf("case %s, %llu particles, %d ranks x %d threads, ng0 %g, ngmax %d, "
+        out << strprintf("%s %s, %llu particles, %d ranks x %d threads, ng0 %g, ngmax %d, "
                          "sinc n %g, courant %g, alpha %g, global bucket %d\n",
-                         cfg.init.c_str(), (unsigned long long)n, nranks, thread_count(), cfg.ng0,
-                         cfg.ngmax, cfg.kernel_exponent, cfg.courant, cfg.alpha, cfg.global_bucket);
+                         cfg.restart_file.empty() ? "case" : "restart of", cfg.init.c_str(),
+                         (unsigned long long)n, nranks, thread_count(), cfg.ng0, cfg.ngmax,
+                         cfg.kernel_exponent, cfg.courant, cfg.alpha, cfg.global_bucket);
+        if (!cfg.restart_file.empty())
+            out << strprintf("continuing from %s at step %lld, t = %.6e\n",
+                             cfg.restart_file.c_str(), (long long)sim.step_count(), sim.time());
         out << (t_end > 0 ? strprintf("until t = %g", t_end) : std::string())
             << (t_end > 0 && cfg.steps >= 0 ? " or " : "")
-            << (cfg.steps >= 0 ? strprintf("%lld steps", (long long)cfg.steps) : std::string())
+            << (cfg.steps >= 0 ? strprintf("until step %lld", (long long)cfg.steps) : std::string())
             << ", output in " << cfg.out_dir << "/\n";
         out << strprintf("%6s %12s %11s %16s %16s %6s %11s %9s %9s\n", "step", "t", "dt", "E_tot",
                          "L_z", "imbal", "halo avg/mx", "s/step", "ETA s");
     }
     if (t_end > 0) sim.set_end_time(t_end);
+    OutputSchedule schedule(cfg, sim.time());
+    detail::g_stop_signal = 0;
+    std::signal(SIGINT, detail::on_stop_signal);
+    std::signal(SIGTERM, detail::on_stop_signal);
     const double wall0 = wall_seconds();
+    const std::int64_t step0 = sim.step_count();
+    double output_wall = 0;
+    std::int64_t last_checkpoint = -1;
     bool warned_ngmax = false;
     auto done = [&] {
         if (cfg.steps >= 0 && sim.step_count() >= cfg.steps) return true;
         return t_end > 0 && sim.time() >= t_end * (1 - 1e-12);
     };
+    auto checkpoint = [&] {
+        double w = wall_seconds();
+        std::string path = write_checkpoint(sim, cfg, units, MPI_COMM_WORLD);
+        output_wall += wall_seconds() - w;
+        schedule.checkpoint_written(wall_seconds());
+        last_checkpoint = sim.step_count();
+        if (root) out << strprintf("checkpoint %s (%.3f s)\n", path.c_str(), wall_seconds() - w);
+    };
     while (!done()) {
+        if (detail::g_stop_signal) sim.raise_flag(kStopRequested);
+        if (root && schedule.clock_due(wall_seconds())) sim.raise_flag(kCheckpointByClock);
         double w0 = wall_seconds();
         sim.step();
         double wstep = wall_seconds() - w0;
@@ -140,26 +230,41 @@ inline int run(const Config& cfg, std::ostream& out) {
                       << "; lists were enlarged (no truncation)\n";
             warned_ngmax = true;
         }
-        if (!root) continue;
-        double mean_wall = (wall_seconds() - wall0) / double(sim.step_count());
-        std::string eta = t_end > 0 && d.dt > 0
-                              ? strprintf("%9.1f", (t_end - d.time) / d.dt * mean_wall)
-                              : strprintf("%9s", "-");
-        out << strprintf("%6lld %12.6e %11.4e %16.9e %16.9e %6.3f %5.2f/%5.2f %9.3f ",
-                         (long long)d.step, d.time, d.dt, d.etot, d.angular_momentum[2],
-                         sim.imbalance(), d.halo_ratio_mean, d.halo_ratio_max, wstep)
-            << eta << "\n";
-        csv->write(d, sim.phase_times());
+        if (root) {
+            double mean_wall = (wall_seconds() - wall0) / double(sim.step_count() - step0);
+            std::string eta = t_end > 0 && d.dt > 0
+                                  ? strprintf("%9.1f", (t_end - d.time) / d.dt * mean_wall)
+                                  : strprintf("%9s", "-");
+            out << strprintf("%6lld %12.6e %11.4e %16.9e %16.9e %6.3f %5.2f/%5.2f %9.3f ",
+                             (long long)d.step, d.time, d.dt, d.etot, d.angular_momentum[2],
+                             sim.imbalance(), d.halo_ratio_mean, d.halo_ratio_max, wstep)
+                << eta << "\n";
+            csv->write(d, sim.phase_times());
+        }
+        if (schedule.snapshot_due(sim.step_count(), sim.time())) {
+            double w = wall_seconds();
+            std::string path = write_snapshot(sim, cfg, units, fields, MPI_COMM_WORLD);
+            output_wall += wall_seconds() - w;
+            if (root) out << strprintf("snapshot %s (%.3f s)\n", path.c_str(), wall_seconds() - w);
+        }
+        const bool stop = sim.flag(kStopRequested);
+        if (schedule.checkpoint_due(sim.step_count()) || sim.flag(kCheckpointByClock) || stop)
+            checkpoint();
+        if (stop) {
+            if (root) out << "stopped by a signal after step " << sim.step_count() << "\n";
+            return 128 + (detail::g_stop_signal ? int(detail::g_stop_signal) : SIGTERM);
+        }
     }
-    const double wall = wall_seconds() - wall0;
-    const double steps = double(sim.step_count());
+    if (schedule.checkpointing() && last_checkpoint != sim.step_count()) checkpoint();
+    const double wall = wall_seconds() - wall0 - output_wall;
+    const double steps = double(sim.step_count() - step0);
     const double rate = steps > 0 ? double(n) * steps / wall : 0.0;
     const int cores = nranks * thread_count();
     double rss = double(peak_rss_bytes());
     MPI_Allreduce(MPI_IN_PLACE, &rss, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD); // output time
     if (!root) return 0;
-    out << strprintf("done: %lld steps, t = %.6e, wall %.3f s\n", (long long)sim.step_count(),
-                     sim.time(), wall);
+    out << strprintf("done: %lld steps, t = %.6e, wall %.3f s (+ %.3f s output)\n",
+                     (long long)steps, sim.time(), wall, output_wall);
     out << strprintf("particle-steps/s %.4e, per core %.4e (%d ranks x %d threads), "
                      "peak RSS %.1f B/particle (all ranks)\n",
                      rate, rate / cores, nranks, thread_count(), rss / double(n));

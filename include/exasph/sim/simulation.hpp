@@ -42,17 +42,42 @@ inline constexpr std::array<std::string_view, kNumPhases> kPhaseNames{
 // One SPH simulation: the step pipeline of DESIGN.md, each phase timed. Runs on any number of
 // MPI ranks of `comm` (one rank included); results do not depend on ranks or threads beyond
 // round-off. Collectives per step: global tree counts (sync), minimum dt, diagnostics.
+// Where a checkpoint left a run: with these and the particles' state fields a run continues
+// exactly (bitwise on the same rank count).
+struct RestartState {
+    double time = 0;
+    std::int64_t step = 0;
+    double dt_m1 = 0;
+    std::vector<std::uint64_t> leaf_keys; // global tree
+};
+
+// Run-control flags every rank learns at the end of a step through the diagnostics collective.
+enum ControlFlag : std::size_t { kStopRequested, kCheckpointByClock, kNumControlFlags };
+
 template <class T>
 class Simulation {
   public:
-    Simulation(const Config& cfg, InitialConditions<T> ic, MPI_Comm comm = MPI_COMM_WORLD)
+    // Restarts from a checkpoint's state.
+    Simulation(const Config& cfg, InitialConditions<T> ic, const RestartState& rs,
+               MPI_Comm comm = MPI_COMM_WORLD)
+        : Simulation(cfg, std::move(ic), comm, &rs) {}
+
+    Simulation(const Config& cfg, InitialConditions<T> ic, MPI_Comm comm = MPI_COMM_WORLD,
+               const RestartState* restart = nullptr)
         : cfg_(cfg), ps_(std::move(ic.particles)), box_(ic.box), eos_(ic.eos),
           kernel_(sinc_kernel(cfg.kernel_exponent)), nlists_(std::uint32_t(cfg.ngmax)),
           domain_(comm, std::uint32_t(cfg.global_bucket), std::uint32_t(cfg.bucket_size),
                   cfg.curve),
           dt_m1_(ic.dt0), dt0_(ic.dt0) {
         ps_.validate();
-        domain_.init(ps_, box_);
+        if (restart) {
+            time_ = restart->time;
+            step_ = restart->step;
+            dt_m1_ = restart->dt_m1;
+            domain_.restore(ps_, restart->leaf_keys);
+        } else {
+            domain_.init(ps_, box_);
+        }
         diagnose(0.0);
     }
 
@@ -87,6 +112,17 @@ class Simulation {
         timer_.stop(kDiagnostics);
         timer_.end_step();
     }
+
+    // Raises a control flag on this rank; after the next step every rank sees it (flag()).
+    void raise_flag(ControlFlag f) { local_flags_[f] = 1.0; }
+    bool flag(ControlFlag f) const { return flags_[f] > 0; }
+
+    // For checkpoints: what RestartState and the owned state fields need.
+    RestartState restart_state() const {
+        return {time_, step_, dt_m1_, domain_.global_tree().keys()};
+    }
+    const EosParams& eos() const { return eos_; }
+    double dt0() const { return dt0_; }
 
     // Steps are shortened so that the run ends exactly at t_end.
     void set_end_time(double t_end) { t_end_ = t_end; }
@@ -182,10 +218,16 @@ class Simulation {
 
     // SPEC 10 sums, and the extent of the particles for next step's box: one collective.
     void diagnose(double dt) {
-        std::vector<SumMax> e(kDiagWithExtent);
+        std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags);
         local_diagnostics(ps_, n_owned(), domain_.n_halo(), e.data());
         Domain<T>::local_extent(ps_, n_owned(), e.data() + kDiagElements);
+        for (std::size_t f = 0; f < kNumControlFlags; ++f)
+            e[kDiagWithExtent + f] = {0.0, local_flags_[f]};
         domain_.collectives().allreduce_sum_max(e);
+        for (std::size_t f = 0; f < kNumControlFlags; ++f) {
+            flags_[f] = e[kDiagWithExtent + f].max;
+            local_flags_[f] = 0.0;
+        }
         diag_ = diagnostics_from(e.data(), domain_.nranks());
         diag_.step = step_;
         diag_.time = time_;
@@ -208,6 +250,7 @@ class Simulation {
     double t_end_ = -1.0;
     std::int64_t step_ = 0;
     std::uint32_t max_list_ = 0;
+    std::array<double, kNumControlFlags> local_flags_{}, flags_{};
 };
 
 } // namespace exasph

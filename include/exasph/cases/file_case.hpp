@@ -1,0 +1,91 @@
+#pragma once
+#include <algorithm>
+#include <string>
+
+#include <mpi.h>
+
+#include "exasph/cases/initial_conditions.hpp"
+#include "exasph/io/h5_file.hpp"
+#include "exasph/io/particle_io.hpp"
+
+namespace exasph {
+
+// Does --init name a file (rather than a test case)?
+inline bool names_a_file(const std::string& init) {
+    auto ends_with = [&](const std::string& s) {
+        return init.size() >= s.size() && init.compare(init.size() - s.size(), s.size(), s) == 0;
+    };
+    return ends_with(".h5") || ends_with(".hdf5") || init.find('/') != std::string::npos;
+}
+
+// The group holding the particle datasets: the highest-numbered "Step#N" group (so that a
+// snapshot can seed a new run), or the root group.
+inline std::string particle_group_name(const h5::Group& root) {
+    long best = -1;
+    for (const auto& name : h5::member_names(root)) {
+        if (name.rfind("Step#", 0) != 0) continue;
+        try {
+            best = std::max(best, std::stol(name.substr(5)));
+        } catch (const std::exception&) {
+        }
+    }
+    return best < 0 ? "/" : "/Step#" + std::to_string(best);
+}
+
+// Initial conditions from an HDF5 file in the layout of docs/file-format.md; every rank reads
+// its share. Ideal-gas EOS with the file's gamma.
+template <class T>
+InitialConditions<T> read_initial_conditions(const std::string& path, MPI_Comm comm) {
+    h5::File file = h5::File::open_read(path, comm);
+    h5::Group root(file, "/", false);
+    InitialConditions<T> ic;
+    ic.name = path;
+    auto vec3 = [&](const std::string& name, bool required, double dflt) {
+        if (!required && !h5::has_attribute(root, name)) return std::vector<double>(3, dflt);
+        auto v = h5::read_attribute_doubles(root, name);
+        if (v.size() != 3)
+            throw input_error(path + ": attribute /" + name + " must have 3 values, has " +
+                              std::to_string(v.size()));
+        return v;
+    };
+    auto scalar = [&](const std::string& name, double dflt) {
+        if (!h5::has_attribute(root, name)) return dflt;
+        auto v = h5::read_attribute_doubles(root, name);
+        if (v.size() != 1 || !std::isfinite(v[0]))
+            throw input_error(path + ": attribute /" + name + " must be one finite number");
+        return v[0];
+    };
+    auto lo = vec3("box_lo", true, 0), hi = vec3("box_hi", true, 0),
+         per = vec3("periodic", false, 0);
+    for (int d = 0; d < 3; ++d) {
+        if (!(std::isfinite(lo[d]) && std::isfinite(hi[d]) && lo[d] < hi[d]))
+            throw input_error(path +
+                              ": attributes box_lo/box_hi must be finite with box_lo < box_hi");
+        ic.box.lo[d] = T(lo[d]);
+        ic.box.hi[d] = T(hi[d]);
+        ic.box.periodic[d] = per[d] != 0;
+    }
+    if (h5::has_attribute(root, "eos") && h5::read_attribute_string(root, "eos") != "ideal-gas")
+        throw input_error(path +
+                          ": attribute /eos: only 'ideal-gas' initial conditions can be read");
+    ic.eos = {EosKind::ideal_gas, scalar("gamma", 5.0 / 3.0), 0.0};
+    if (!(ic.eos.gamma > 1.0)) throw input_error(path + ": attribute /gamma must be above 1");
+    ic.dt0 = scalar("dt0", 1e-6);
+    if (!(ic.dt0 > 0)) throw input_error(path + ": attribute /dt0 must be positive");
+    ic.t_end = scalar("t_end", 0.0);
+    if (h5::has_attribute(root, "units")) ic.units = h5::read_attribute_string(root, "units");
+
+    h5::Group data(file, particle_group_name(root), false);
+    auto& ps = ic.particles;
+    read_particle_fields(data, ps, {Field::x, Field::y, Field::z, Field::m, Field::h},
+                         {Field::vx, Field::vy, Field::vz, Field::u}, false, comm);
+    collective_check(comm, [&] { validate_input_particles(ps, path, ic.box); });
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        ps[Field::x_m1][i] = ps[Field::x][i] - ps[Field::vx][i] * T(ic.dt0);
+        ps[Field::y_m1][i] = ps[Field::y][i] - ps[Field::vy][i] * T(ic.dt0);
+        ps[Field::z_m1][i] = ps[Field::z][i] - ps[Field::vz][i] * T(ic.dt0);
+    }
+    return ic;
+}
+
+} // namespace exasph

@@ -1,0 +1,127 @@
+#pragma once
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <mpi.h>
+
+#include "exasph/io/atomic_output.hpp"
+#include "exasph/io/particle_io.hpp"
+#include "exasph/sim/run_attributes.hpp"
+#include "exasph/sim/simulation.hpp"
+#include "exasph/sim/snapshot.hpp"
+
+namespace exasph {
+
+inline constexpr const char* kCheckpointFormat = "exasph-checkpoint-1";
+
+// Test hook for the crash-safety test: with EXASPH_TEST_CHECKPOINT_STALL=STEP set, the checkpoint
+// of that step sleeps for a minute after writing half of its data (so a test can SIGKILL the run
+// mid-write). Costs one getenv per checkpoint otherwise.
+inline void checkpoint_test_stall(std::int64_t step) {
+    const char* s = std::getenv("EXASPH_TEST_CHECKPOINT_STALL");
+    if (s && std::atoll(s) == step) std::this_thread::sleep_for(std::chrono::seconds(60));
+}
+
+// Keeps the newest `keep` checkpoints of the directory, deleting older ones (rank 0).
+inline void prune_checkpoints(const std::string& dir, std::size_t keep) {
+    std::vector<std::filesystem::path> found;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+        const auto name = e.path().filename().string();
+        if (name.rfind("checkpoint_", 0) == 0 && e.path().extension() == ".h5")
+            found.push_back(e.path());
+    }
+    std::sort(found.begin(), found.end());
+    for (std::size_t i = 0; i + keep < found.size(); ++i) std::filesystem::remove(found[i], ec);
+}
+
+// Everything needed to continue exactly: all state fields and ids of the owned particles, the
+// step, time, previous dt, first dt, box, EOS, parameters and the global tree. Atomic (temporary
+// name, then rename); the previous checkpoint is kept.
+template <class T>
+std::string write_checkpoint(const Simulation<T>& sim, const Config& cfg, const std::string& units,
+                             MPI_Comm comm) {
+    const auto rs = sim.restart_state();
+    const std::string path = numbered_path(cfg.out_dir, "checkpoint", rs.step, ".h5");
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    try {
+        h5::File file = h5::File::create(temporary_name(path), comm);
+        h5::Group root(file, "/", false);
+        h5::write_attribute(root, "format", std::string(kCheckpointFormat));
+        write_run_attributes(root, cfg, sim.box(), sim.eos(), units);
+        h5::write_attribute(root, "time", rs.time);
+        h5::write_attribute(root, "step", std::int64_t(rs.step));
+        h5::write_attribute(root, "dt_m1", rs.dt_m1);
+        h5::write_attribute(root, "dt0", sim.dt0());
+        h5::Group state(file, "/state", true);
+        const auto fields = fields_with_role(kState);
+        const std::vector<Field> first(fields.begin(), fields.begin() + fields.size() / 2);
+        const std::vector<Field> second(fields.begin() + fields.size() / 2, fields.end());
+        write_particle_fields(state, sim.particles(), sim.n_owned(), first, false, comm);
+        checkpoint_test_stall(rs.step);
+        write_particle_fields(state, sim.particles(), sim.n_owned(), second, true, comm);
+        h5::Group domain(file, "/domain", true);
+        const auto& keys = rs.leaf_keys;
+        h5::write_u64(domain, "leaf_keys", keys.data(), rank == 0 ? keys.size() : 0, 0,
+                      keys.size());
+    } catch (...) {
+        discard_output(path, comm);
+        throw;
+    }
+    commit_output(path, comm);
+    if (rank == 0) prune_checkpoints(cfg.out_dir, 2);
+    return path;
+}
+
+template <class T>
+struct Checkpoint {
+    InitialConditions<T> ic;
+    RestartState rs;
+};
+
+// Reads a checkpoint written by any rank count; fills the physics parameters of cfg.
+template <class T>
+Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm comm) {
+    h5::File file = h5::File::open_read(path, comm);
+    h5::Group root(file, "/", false);
+    if (!h5::has_attribute(root, "format") ||
+        h5::read_attribute_string(root, "format") != kCheckpointFormat)
+        throw input_error(path + ": not an exasph checkpoint (attribute /format)", true);
+    auto num = [&](const char* name) { return h5::read_attribute_doubles(root, name).at(0); };
+    Checkpoint<T> cp;
+    read_run_parameters(root, cfg);
+    auto lo = h5::read_attribute_doubles(root, "box_lo");
+    auto hi = h5::read_attribute_doubles(root, "box_hi");
+    auto per = h5::read_attribute_doubles(root, "periodic");
+    for (int d = 0; d < 3; ++d) {
+        cp.ic.box.lo[d] = T(lo.at(d));
+        cp.ic.box.hi[d] = T(hi.at(d));
+        cp.ic.box.periodic[d] = per.at(d) != 0;
+    }
+    cp.ic.eos.kind =
+        h5::read_attribute_string(root, "eos") == "tait" ? EosKind::tait : EosKind::ideal_gas;
+    cp.ic.eos.gamma = num("gamma");
+    cp.ic.eos.c0 = num("sound_speed");
+    cp.ic.units = h5::read_attribute_string(root, "units");
+    cp.ic.dt0 = num("dt0");
+    cp.ic.name = cfg.init;
+    cp.rs.time = num("time");
+    cp.rs.step = std::int64_t(num("step"));
+    cp.rs.dt_m1 = num("dt_m1");
+    h5::Group state(file, "/state", false);
+    const auto fields = fields_with_role(kState);
+    read_particle_fields(state, cp.ic.particles, fields, {}, true, comm);
+    collective_check(comm, [&] { validate_input_particles(cp.ic.particles, path, cp.ic.box); });
+    h5::Group domain(file, "/domain", false);
+    const std::uint64_t nkeys = h5::dataset_length(domain, "leaf_keys", true);
+    cp.rs.leaf_keys = h5::read_u64(domain, "leaf_keys", 0, nkeys);
+    return cp;
+}
+
+} // namespace exasph

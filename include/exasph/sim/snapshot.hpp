@@ -1,0 +1,92 @@
+#pragma once
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <mpi.h>
+
+#include "exasph/io/atomic_output.hpp"
+#include "exasph/io/particle_io.hpp"
+#include "exasph/io/xdmf.hpp"
+#include "exasph/sim/run_attributes.hpp"
+#include "exasph/sim/simulation.hpp"
+
+namespace exasph {
+
+// Resolves -f names to fields (x, y, z are always written: ParaView needs the geometry).
+inline std::vector<Field> snapshot_field_list(const std::vector<std::string>& names) {
+    std::vector<Field> out{Field::x, Field::y, Field::z};
+    if (names.empty()) {
+        for (const auto& info : kFieldTable)
+            if ((info.roles & kSnapshot) &&
+                std::find(out.begin(), out.end(), info.field) == out.end())
+                out.push_back(info.field);
+        return out;
+    }
+    for (const auto& n : names) {
+        auto it = std::find_if(kFieldTable.begin(), kFieldTable.end(),
+                               [&](const FieldInfo& f) { return f.name == n; });
+        if (it == kFieldTable.end()) {
+            std::string known;
+            for (const auto& f : kFieldTable)
+                known += (known.empty() ? "" : ",") + std::string(f.name);
+            throw input_error("-f: unknown field '" + n + "' (known: " + known + ")", true);
+        }
+        if (std::find(out.begin(), out.end(), it->field) == out.end()) out.push_back(it->field);
+    }
+    return out;
+}
+
+inline std::string numbered_path(const std::string& dir, const char* stem, std::int64_t step,
+                                 const char* ext) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%s_%06lld%s", stem, (long long)step, ext);
+    return (std::filesystem::path(dir) / name).string();
+}
+
+// Snapshot in the H5Part layout: group Step#N holding one 1-D dataset per field (all ranks write
+// their owned particles collectively, no gather), with time/step/dt attributes, run attributes
+// on the root, and an XDMF sidecar. Written under a temporary name, renamed when complete.
+template <class T>
+std::string write_snapshot(const Simulation<T>& sim, const Config& cfg, const std::string& units,
+                           const std::vector<Field>& fields, MPI_Comm comm) {
+    const std::int64_t step = sim.step_count();
+    const std::string path = numbered_path(cfg.out_dir, "snapshot", step, ".h5");
+    const std::string group = "/Step#" + std::to_string(step);
+    std::uint64_t n = 0;
+    try {
+        h5::File file = h5::File::create(temporary_name(path), comm);
+        h5::Group root(file, "/", false);
+        write_run_attributes(root, cfg, sim.box(), sim.eos(), units);
+        h5::write_attribute(root, "dt0",
+                            sim.diagnostics().dt > 0 ? sim.diagnostics().dt : sim.dt0());
+        h5::Group g(file, group, true);
+        h5::write_attribute(g, "time", sim.time());
+        h5::write_attribute(g, "step", std::int64_t(step));
+        h5::write_attribute(g, "dt", sim.diagnostics().dt);
+        n = write_particle_fields(g, sim.particles(), sim.n_owned(), fields, true, comm);
+        h5::write_attribute(g, "numParticles", std::int64_t(n));
+        for (Field f : fields)
+            h5::write_attribute(g, "unit:" + std::string(field_info(f).name),
+                                std::string(field_info(f).unit));
+    } catch (...) {
+        discard_output(path, comm);
+        throw;
+    }
+    commit_output(path, comm);
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    if (rank == 0) {
+        std::vector<std::string> names;
+        for (Field f : fields) names.emplace_back(field_info(f).name);
+        const std::string xdmf = numbered_path(cfg.out_dir, "snapshot", step, ".xdmf");
+        write_text_file(temporary_name(xdmf),
+                        xdmf_text(std::filesystem::path(path).filename().string(), group, n,
+                                  sim.time(), names));
+        std::filesystem::rename(temporary_name(xdmf), xdmf);
+    }
+    return path;
+}
+
+} // namespace exasph

@@ -1,0 +1,297 @@
+// Parallel HDF5 wrappers: see include/exasph/io/h5_file.hpp.
+#include "exasph/io/h5_file.hpp"
+
+#include <hdf5.h>
+
+#include "exasph/util/error.hpp"
+
+namespace exasph::h5 {
+
+namespace {
+
+// HDF5 prints its own error stacks by default; exasph reports one line instead.
+void silence_hdf5() {
+    static bool done = false;
+    if (!done) {
+        H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+        done = true;
+    }
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& what, int code) {
+    throw Error(path + ": " + what, code);
+}
+
+hid_t access_plist(MPI_Comm comm) {
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL);
+    return fapl;
+}
+
+hid_t collective_transfer() {
+    hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
+    H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
+    return dxpl;
+}
+
+std::string where(const Group& g, const std::string& name) {
+    return g.name() == "/" ? "/" + name : g.name() + "/" + name;
+}
+
+template <class V>
+void write_1d(const Group& g, const std::string& name, hid_t memtype, hid_t filetype, const V* data,
+              std::uint64_t count, std::uint64_t offset, std::uint64_t n_global) {
+    hsize_t dims[1] = {n_global};
+    hid_t fspace = H5Screate_simple(1, dims, nullptr);
+    hid_t dset =
+        H5Dcreate2(g.id(), name.c_str(), filetype, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (dset < 0) {
+        H5Sclose(fspace);
+        fail(g.file().path(), "cannot create dataset " + where(g, name), 3);
+    }
+    hsize_t start[1] = {offset}, cnt[1] = {count};
+    H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
+    hid_t mspace = H5Screate_simple(1, cnt, nullptr);
+    hid_t dxpl = collective_transfer();
+    herr_t st = H5Dwrite(dset, memtype, mspace, fspace, dxpl, data);
+    H5Pclose(dxpl);
+    H5Sclose(mspace);
+    H5Sclose(fspace);
+    H5Dclose(dset);
+    if (st < 0) fail(g.file().path(), "cannot write dataset " + where(g, name), 3);
+}
+
+template <class V>
+std::vector<V> read_1d(const Group& g, const std::string& name, hid_t memtype, std::uint64_t offset,
+                       std::uint64_t count) {
+    hid_t dset = H5Dopen2(g.id(), name.c_str(), H5P_DEFAULT);
+    if (dset < 0) fail(g.file().path(), "missing dataset " + where(g, name), 2);
+    hid_t fspace = H5Dget_space(dset);
+    hsize_t start[1] = {offset}, cnt[1] = {count};
+    H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
+    hid_t mspace = H5Screate_simple(1, cnt, nullptr);
+    std::vector<V> out(count);
+    hid_t dxpl = collective_transfer();
+    herr_t st = H5Dread(dset, memtype, mspace, fspace, dxpl, out.data());
+    H5Pclose(dxpl);
+    H5Sclose(mspace);
+    H5Sclose(fspace);
+    H5Dclose(dset);
+    if (st < 0)
+        fail(g.file().path(),
+             "cannot read dataset " + where(g, name) + " (truncated or corrupted file?)", 2);
+    return out;
+}
+
+template <class V>
+void write_attr(const Group& g, const std::string& name, hid_t type, const V* v, std::size_t n) {
+    if (H5Aexists(g.id(), name.c_str()) > 0) H5Adelete(g.id(), name.c_str());
+    hsize_t dims[1] = {n};
+    hid_t space = n == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, dims, nullptr);
+    hid_t attr = H5Acreate2(g.id(), name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+    herr_t st = attr < 0 ? -1 : H5Awrite(attr, type, v);
+    if (attr >= 0) H5Aclose(attr);
+    H5Sclose(space);
+    if (st < 0) fail(g.file().path(), "cannot write attribute " + where(g, name), 3);
+}
+
+} // namespace
+
+File File::create(const std::string& path, MPI_Comm comm) {
+    silence_hdf5();
+    hid_t fapl = access_plist(comm);
+    hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    H5Pclose(fapl);
+    if (id < 0) fail(path, "cannot create file", 3);
+    return File(id, path, comm);
+}
+
+File File::open_read(const std::string& path, MPI_Comm comm) {
+    silence_hdf5();
+    htri_t exists = H5Fis_hdf5(path.c_str());
+    if (exists <= 0) {
+        FILE* f = std::fopen(path.c_str(), "rb");
+        if (!f) fail(path, "no such file or not readable", 2);
+        std::fclose(f);
+        fail(path, "not an HDF5 file (truncated or corrupted?)", 2);
+    }
+    hid_t fapl = access_plist(comm);
+    hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
+    H5Pclose(fapl);
+    if (id < 0) fail(path, "cannot open as HDF5 (truncated or corrupted?)", 2);
+    return File(id, path, comm);
+}
+
+File::File(File&& o) noexcept : id_(o.id_), path_(std::move(o.path_)), comm_(o.comm_) {
+    o.id_ = -1;
+}
+File::~File() {
+    close();
+}
+void File::close() {
+    if (id_ >= 0) H5Fclose(id_);
+    id_ = -1;
+}
+
+Group::Group(const File& f, const std::string& name, bool create) : file_(f), name_(name) {
+    if (name == "/")
+        id_ = H5Gopen2(f.id(), "/", H5P_DEFAULT);
+    else if (create)
+        id_ = H5Gcreate2(f.id(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    else
+        id_ = H5Gopen2(f.id(), name.c_str(), H5P_DEFAULT);
+    if (id_ < 0)
+        fail(f.path(), (create ? "cannot create group " : "missing group ") + name, create ? 3 : 2);
+}
+Group::Group(Group&& o) noexcept : file_(o.file_), id_(o.id_), name_(std::move(o.name_)) {
+    o.id_ = -1;
+}
+Group::~Group() {
+    if (id_ >= 0) H5Gclose(id_);
+}
+
+bool has_link(const Group& g, const std::string& name) {
+    return H5Lexists(g.id(), name.c_str(), H5P_DEFAULT) > 0;
+}
+bool has_attribute(const Group& g, const std::string& name) {
+    return H5Aexists(g.id(), name.c_str()) > 0;
+}
+
+std::vector<std::string> member_names(const Group& g) {
+    std::vector<std::string> out;
+    H5G_info_t info;
+    if (H5Gget_info(g.id(), &info) < 0) return out;
+    for (hsize_t i = 0; i < info.nlinks; ++i) {
+        ssize_t len =
+            H5Lget_name_by_idx(g.id(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+        if (len < 0) continue;
+        std::string name(std::size_t(len), '\0');
+        H5Lget_name_by_idx(g.id(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+                           std::size_t(len) + 1, H5P_DEFAULT);
+        out.push_back(name);
+    }
+    return out;
+}
+
+void write_doubles(const Group& g, const std::string& name, const double* data, std::uint64_t count,
+                   std::uint64_t offset, std::uint64_t n_global) {
+    write_1d(g, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, data, count, offset, n_global);
+}
+void write_u64(const Group& g, const std::string& name, const std::uint64_t* data,
+               std::uint64_t count, std::uint64_t offset, std::uint64_t n_global) {
+    write_1d(g, name, H5T_NATIVE_UINT64, H5T_STD_U64LE, data, count, offset, n_global);
+}
+
+std::uint64_t dataset_length(const Group& g, const std::string& name, bool integer) {
+    if (!has_link(g, name)) fail(g.file().path(), "missing dataset " + where(g, name), 2);
+    hid_t dset = H5Dopen2(g.id(), name.c_str(), H5P_DEFAULT);
+    if (dset < 0) fail(g.file().path(), "cannot open dataset " + where(g, name), 2);
+    hid_t type = H5Dget_type(dset);
+    H5T_class_t cls = H5Tget_class(type);
+    H5Tclose(type);
+    hid_t space = H5Dget_space(dset);
+    int rank = H5Sget_simple_extent_ndims(space);
+    hsize_t dims[8] = {0};
+    if (rank > 0 && rank <= 8) H5Sget_simple_extent_dims(space, dims, nullptr);
+    H5Sclose(space);
+    H5Dclose(dset);
+    if (rank != 1)
+        fail(g.file().path(),
+             "dataset " + where(g, name) + " must be 1-D, has " + std::to_string(rank) +
+                 " dimensions",
+             2);
+    if (integer ? cls != H5T_INTEGER : cls != H5T_FLOAT)
+        fail(g.file().path(),
+             "dataset " + where(g, name) + " must be of " +
+                 (integer ? "integer" : "floating-point") + " type",
+             2);
+    return dims[0];
+}
+
+std::vector<double> read_doubles(const Group& g, const std::string& name, std::uint64_t offset,
+                                 std::uint64_t count) {
+    return read_1d<double>(g, name, H5T_NATIVE_DOUBLE, offset, count);
+}
+std::vector<std::uint64_t> read_u64(const Group& g, const std::string& name, std::uint64_t offset,
+                                    std::uint64_t count) {
+    return read_1d<std::uint64_t>(g, name, H5T_NATIVE_UINT64, offset, count);
+}
+
+void write_attribute(const Group& g, const std::string& name, double v) {
+    write_attr(g, name, H5T_NATIVE_DOUBLE, &v, 1);
+}
+void write_attribute(const Group& g, const std::string& name, std::int64_t v) {
+    write_attr(g, name, H5T_NATIVE_INT64, &v, 1);
+}
+void write_attribute(const Group& g, const std::string& name, const std::vector<double>& v) {
+    write_attr(g, name, H5T_NATIVE_DOUBLE, v.data(), v.size());
+}
+void write_attribute(const Group& g, const std::string& name, const std::vector<std::int64_t>& v) {
+    write_attr(g, name, H5T_NATIVE_INT64, v.data(), v.size());
+}
+void write_attribute(const Group& g, const std::string& name, const std::string& v) {
+    if (H5Aexists(g.id(), name.c_str()) > 0) H5Adelete(g.id(), name.c_str());
+    // Variable-length UTF-8, as h5py writes strings: Python readers get str, not bytes.
+    hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, H5T_VARIABLE);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+    hid_t space = H5Screate(H5S_SCALAR);
+    hid_t attr = H5Acreate2(g.id(), name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+    const char* text = v.c_str();
+    herr_t st = attr < 0 ? -1 : H5Awrite(attr, type, &text);
+    if (attr >= 0) H5Aclose(attr);
+    H5Sclose(space);
+    H5Tclose(type);
+    if (st < 0) fail(g.file().path(), "cannot write attribute " + where(g, name), 3);
+}
+
+std::vector<double> read_attribute_doubles(const Group& g, const std::string& name) {
+    hid_t attr = H5Aopen(g.id(), name.c_str(), H5P_DEFAULT);
+    if (attr < 0) fail(g.file().path(), "missing attribute " + where(g, name), 2);
+    hid_t space = H5Aget_space(attr);
+    hssize_t n = H5Sget_simple_extent_npoints(space);
+    H5Sclose(space);
+    hid_t type = H5Aget_type(attr);
+    H5T_class_t cls = H5Tget_class(type);
+    H5Tclose(type);
+    std::vector<double> out(n > 0 ? std::size_t(n) : 0);
+    herr_t st = (cls == H5T_FLOAT || cls == H5T_INTEGER)
+                    ? H5Aread(attr, H5T_NATIVE_DOUBLE, out.data())
+                    : -1;
+    H5Aclose(attr);
+    if (st < 0) fail(g.file().path(), "attribute " + where(g, name) + " must be numeric", 2);
+    return out;
+}
+
+std::string read_attribute_string(const Group& g, const std::string& name) {
+    hid_t attr = H5Aopen(g.id(), name.c_str(), H5P_DEFAULT);
+    if (attr < 0) fail(g.file().path(), "missing attribute " + where(g, name), 2);
+    hid_t ftype = H5Aget_type(attr);
+    std::string out;
+    herr_t st = -1;
+    if (H5Tget_class(ftype) == H5T_STRING && !H5Tis_variable_str(ftype)) {
+        std::size_t size = H5Tget_size(ftype);
+        std::vector<char> buf(size + 1, '\0');
+        hid_t mtype = H5Tcopy(H5T_C_S1);
+        H5Tset_size(mtype, size);
+        H5Tset_cset(mtype, H5Tget_cset(ftype)); // h5py writes UTF-8
+        st = H5Aread(attr, mtype, buf.data());
+        H5Tclose(mtype);
+        out = buf.data();
+    } else if (H5Tget_class(ftype) == H5T_STRING) {
+        char* s = nullptr;
+        hid_t mtype = H5Tcopy(H5T_C_S1);
+        H5Tset_size(mtype, H5T_VARIABLE);
+        H5Tset_cset(mtype, H5Tget_cset(ftype));
+        st = H5Aread(attr, mtype, &s);
+        if (st >= 0 && s) out = s;
+        if (s) H5free_memory(s);
+        H5Tclose(mtype);
+    }
+    H5Tclose(ftype);
+    H5Aclose(attr);
+    if (st < 0) fail(g.file().path(), "attribute " + where(g, name) + " must be a string", 2);
+    return out;
+}
+
+} // namespace exasph::h5

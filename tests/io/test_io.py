@@ -1,0 +1,275 @@
+#!/usr/bin/env python3
+"""Issue 4 acceptance tests: checkpoint/restart, crash safety, snapshots read by h5py with an
+XDMF sidecar, and bad input. Run by CTest as
+
+    test_io.py TEST --exe build/exasph --mpirun "mpirun --oversubscribe [--allow-run-as-root]"
+
+with TEST one of: restart, sigkill, sigterm, snapshot, bad_input. Exits non-zero on failure.
+"""
+import argparse
+import os
+import shlex
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+COMPARE = HERE.parent.parent / "tools" / "h5compare.py"
+RUN = ["-n", "12", "--threads", "1"]  # 1728 particles: quick, still several global leaves
+
+
+class Runner:
+    def __init__(self, exe, mpirun, work):
+        self.exe, self.mpirun, self.work = exe, shlex.split(mpirun), Path(work)
+
+    def cmd(self, ranks, *args):
+        base = [self.exe] if ranks == 1 else self.mpirun + ["-np", str(ranks), self.exe]
+        return base + [str(a) for a in args]
+
+    def run(self, ranks, *args, env=None, expect=0):
+        p = subprocess.run(self.cmd(ranks, *args), capture_output=True, text=True,
+                           env=env, timeout=600)
+        if expect is not None and p.returncode != expect:
+            raise AssertionError(f"{' '.join(self.cmd(ranks, *args))} exited {p.returncode}, "
+                                 f"expected {expect}:\n{p.stdout[-2000:]}\n{p.stderr[-2000:]}")
+        return p
+
+
+def compare(a, b, rtol):
+    p = subprocess.run([sys.executable, str(COMPARE), str(a), str(b), "--rtol", str(rtol)],
+                       capture_output=True, text=True)
+    print(p.stdout.strip().splitlines()[-1] if p.stdout else p.stderr)
+    assert p.returncode == 0, f"{a} and {b} differ beyond {rtol}:\n{p.stdout}{p.stderr}"
+
+
+def test_restart(r):
+    """20 steps == 10 + checkpoint + restart + 10, bitwise for 1 and 2 ranks; 3 ranks from a
+    2-rank checkpoint to 1e-12."""
+    for ranks in (1, 2):
+        a, b = r.work / f"full{ranks}", r.work / f"restarted{ranks}"
+        r.run(ranks, *RUN, "-s", 20, "--checkpoint-every", 10, "--out", a)
+        r.run(ranks, "--restart", a / "checkpoint_000010.h5", "-s", 20, "--threads", 1,
+              "--checkpoint-every", 10, "--out", b)
+        compare(a / "checkpoint_000020.h5", b / "checkpoint_000020.h5", 0.0)
+    c = r.work / "restarted3"
+    r.run(3, "--restart", r.work / "full2" / "checkpoint_000010.h5", "-s", 20, "--threads", 1,
+          "--checkpoint-every", 10, "--out", c)
+    compare(r.work / "full2" / "checkpoint_000020.h5", c / "checkpoint_000020.h5", 1e-12)
+    # Changing physics on restart is refused.
+    p = r.run(1, "--restart", r.work / "full1" / "checkpoint_000010.h5", "--ng0", 50, expect=2)
+    assert "--ng0" in p.stderr, p.stderr
+
+
+def wait_for(path, timeout=120):
+    t0 = time.time()
+    while not path.exists():
+        if time.time() - t0 > timeout:
+            raise AssertionError(f"{path} did not appear")
+        time.sleep(0.02)
+
+
+def test_sigkill(r):
+    """SIGKILL in the middle of writing a checkpoint leaves the previous one readable, and a
+    restart from it reproduces the uninterrupted run."""
+    ref, run = r.work / "ref", r.work / "killed"
+    r.run(1, *RUN, "-s", 20, "--checkpoint-every", 5, "--out", ref)
+    env = dict(os.environ, EXASPH_TEST_CHECKPOINT_STALL="10")
+    p = subprocess.Popen(r.cmd(1, *RUN, "-s", 20, "--checkpoint-every", 5, "--out", run),
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+    wait_for(run / "checkpoint_000010.h5.tmp")
+    time.sleep(0.2)  # inside the stall, half of the state written
+    p.send_signal(signal.SIGKILL)
+    p.wait()
+    assert not (run / "checkpoint_000010.h5").exists(), "a partial checkpoint has its final name"
+    r.run(1, "--restart", run / "checkpoint_000005.h5", "-s", 20, "--threads", 1,
+          "--checkpoint-every", 5, "--out", run)
+    compare(ref / "checkpoint_000020.h5", run / "checkpoint_000020.h5", 0.0)
+
+
+def test_sigterm(r):
+    """SIGTERM makes the run write a checkpoint at the end of the current step and exit 143."""
+    ref, run = r.work / "ref_term", r.work / "term"
+    r.run(1, *RUN, "-s", 40, "--checkpoint-every", 40, "--out", ref)
+    p = subprocess.Popen(r.cmd(1, *RUN, "-s", 40, "--checkpoint-every", 1000, "--out", run),
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    wait_for(run / "diagnostics.csv")
+    time.sleep(0.3)
+    p.send_signal(signal.SIGTERM)
+    out, err = p.communicate(timeout=120)
+    assert p.returncode == 128 + signal.SIGTERM, f"exit {p.returncode}: {out[-500:]} {err}"
+    cps = sorted(run.glob("checkpoint_*.h5"))
+    assert len(cps) == 1, f"expected one checkpoint, found {cps}"
+    assert "stopped by a signal" in out
+    r.run(1, "--restart", cps[0], "-s", 40, "--threads", 1, "--checkpoint-every", 40,
+          "--out", run)
+    compare(ref / "checkpoint_000040.h5", run / "checkpoint_000040.h5", 0.0)
+
+
+def test_snapshot(r):
+    """A snapshot written by 2 ranks is read by h5py with the right fields, count and
+    attributes; the XDMF sidecar parses as XML and names every dataset with its shape."""
+    out = r.work / "snap"
+    r.run(2, *RUN, "-s", 6, "-w", 3, "-f", "rho,vx,vy,vz,u,h,m,p", "--out", out)
+    h5 = out / "snapshot_000006.h5"
+    assert h5.exists() and (out / "snapshot_000003.h5").exists()
+    assert not list(out.glob("*.tmp")), "temporary files left behind"
+    with h5py.File(h5, "r") as f:
+        g = f["Step#6"]
+        fields = {"x", "y", "z", "rho", "vx", "vy", "vz", "u", "h", "m", "p", "id"}
+        assert set(g.keys()) == fields, sorted(g.keys())
+        for k in fields:
+            assert g[k].shape == (1728,), (k, g[k].shape)
+        assert g.attrs["step"] == 6 and g.attrs["numParticles"] == 1728
+        assert g.attrs["time"] > 0 and g.attrs["dt"] > 0
+        assert sorted(g["id"][()]) == list(range(1728)), "ids not a permutation"
+        assert np.all(g["rho"][()] > 0.5) and np.all(np.isfinite(g["p"][()]))
+        for a in ("code_version", "units", "box_lo", "box_hi", "periodic", "gamma",
+                  "param:ng0", "param:kernel_exponent", "param:courant", "param:alpha"):
+            assert a in f.attrs, a
+        assert f.attrs["param:side"] == 12 and "cgs" in f.attrs["units"]
+        # The positions match the step-6 state of a one-rank run.
+    one = r.work / "snap1"
+    r.run(1, *RUN, "-s", 6, "-w", 6, "--out", one)
+    compare(h5, one / "snapshot_000006.h5", 1e-12)
+    # XDMF: valid XML, every DataItem names an existing dataset with its shape.
+    root = ET.parse(out / "snapshot_000006.xdmf").getroot()
+    items = root.findall(".//DataItem")
+    names = set()
+    with h5py.File(h5, "r") as f:
+        for item in items:
+            fname, dset = item.text.strip().split(":")
+            assert fname == "snapshot_000006.h5", fname
+            assert dset in f, dset
+            assert item.get("Dimensions") == str(f[dset].shape[0]), item.attrib
+            names.add(dset.split("/")[-1])
+    assert names == {"x", "y", "z", "rho", "vx", "vy", "vz", "u", "h", "m", "p"}, names
+    assert root.find(".//Topology").get("NumberOfElements") == "1728"
+
+
+def write_ic(path, n=8, mutate=None):
+    """A valid 8^3 ideal-gas file; `mutate(f, data)` breaks it before writing."""
+    g = (np.arange(n) + 0.5) / n - 0.5
+    x, y, z = (a.ravel().copy() for a in np.meshgrid(g, g, g, indexing="ij"))
+    data = {"x": x, "y": y, "z": z, "m": np.full(x.size, 1.0 / x.size),
+            "h": np.full(x.size, 1.44 / n), "u": np.ones(x.size), "vx": np.zeros(x.size)}
+    with h5py.File(path, "w") as f:
+        f.attrs["box_lo"] = [-0.5] * 3
+        f.attrs["box_hi"] = [0.5] * 3
+        f.attrs["periodic"] = [1, 1, 1]
+        if mutate:
+            mutate(f, data)
+        for k, v in data.items():
+            if k not in f:
+                f[k] = v
+
+
+def test_bad_input(r):
+    """Every kind of bad input: one line naming the culprit, exit 2 (3 for output I/O), and no
+    snapshot or checkpoint left behind."""
+    w = r.work
+    good = w / "good.h5"
+    write_ic(good)
+    r.run(1, "--init", good, "-s", 2, "-w", 1, "--out", w / "good_out")
+
+    def nan(f, d):
+        d["u"][5] = np.nan
+
+    def inf(f, d):
+        d["vx"][7] = np.inf
+
+    def zero_mass(f, d):
+        d["m"][3] = 0.0
+
+    def negative_h(f, d):
+        d["h"][4] = -0.1
+
+    def outside(f, d):
+        d["x"][9] = 0.75
+
+    def missing(f, d):
+        del d["h"]
+
+    def two_d(f, d):
+        f["y"] = np.zeros((d["y"].size, 2))
+
+    def wrong_type(f, d):
+        f["m"] = np.array([b"heavy"] * d["m"].size)
+
+    def short(f, d):
+        d["z"] = d["z"][:-3]
+
+    def no_box(f, d):
+        del f.attrs["box_lo"]
+
+    cases = [
+        ("nan", nan, "field u", 2), ("inf", inf, "field vx", 2),
+        ("zero_mass", zero_mass, "field m", 2), ("negative_h", negative_h, "field h", 2),
+        ("outside", outside, "outside the periodic box", 2), ("missing", missing, "/h", 2),
+        ("two_d", two_d, "/y", 2), ("wrong_type", wrong_type, "/m", 2),
+        ("short", short, "dataset z", 2), ("no_box", no_box, "box_lo", 2),
+    ]
+    failures = []
+
+    def expect(name, args, needle, code):
+        out = w / f"out_{name}"
+        extra = [] if "-w" in args else ["-w", 1]
+        p = r.run(1, *args, "-s", 2, *extra, "--checkpoint-every", 1, "--out", out, expect=None)
+        lines = [ln for ln in p.stderr.strip().splitlines() if ln]
+        if p.returncode != code:
+            failures.append(f"{name}: exit {p.returncode}, expected {code}: {p.stderr.strip()}")
+        elif len(lines) != 1 or needle not in lines[0]:
+            failures.append(f"{name}: message does not name '{needle}': {p.stderr.strip()}")
+        left = [x.name for x in out.glob("*") if x.suffix in (".h5", ".tmp", ".xdmf")] \
+            if out.exists() else []
+        if left:
+            failures.append(f"{name}: left output files behind: {left}")
+        print(f"{name}: exit {p.returncode}: {lines[0] if lines else ''}")
+
+    for name, mutate, needle, code in cases:
+        path = w / f"{name}.h5"
+        write_ic(path, mutate=mutate)
+        expect(name, ["--init", path], needle, code)
+    # Files that are not (complete) HDF5.
+    truncated = w / "truncated.h5"
+    truncated.write_bytes(good.read_bytes()[: good.stat().st_size // 2])
+    expect("truncated", ["--init", truncated], "truncated.h5", 2)
+    corrupted = w / "corrupted.h5"
+    corrupted.write_bytes(bytes(np.random.default_rng(3).integers(0, 256, 4096, dtype=np.uint8)))
+    expect("corrupted", ["--init", corrupted], "corrupted.h5", 2)
+    expect("missing_file", ["--init", w / "nosuch.h5"], "nosuch.h5", 2)
+    expect("unknown_case", ["--init", "nosuchcase"], "nosuchcase", 2)
+    expect("bad_field", ["--init", good, "-f", "rho,bogus"], "bogus", 2)
+    expect("bad_option", ["--init", good, "--courant", "5"], "--courant", 2)
+    expect("bad_write_every", ["--init", good, "-w", "-3"], "'-3' is not a positive", 2)
+    expect("restart_not_checkpoint", ["--restart", good], "not an exasph checkpoint", 2)
+    expect("restart_missing", ["--restart", w / "nosuch.h5"], "--restart", 2)
+    # Output I/O failure: the output directory cannot be created (a file is in the way).
+    blocker = w / "blocker"
+    blocker.write_text("not a directory")
+    p = r.run(1, "--init", good, "-s", 1, "--out", blocker / "sub", expect=None)
+    if p.returncode != 3 or "blocker" not in p.stderr:
+        failures.append(f"unwritable output: exit {p.returncode}: {p.stderr.strip()}")
+    assert not failures, "\n".join(failures)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("test", choices=["restart", "sigkill", "sigterm", "snapshot", "bad_input"])
+    ap.add_argument("--exe", required=True)
+    ap.add_argument("--mpirun", required=True)
+    args = ap.parse_args()
+    with tempfile.TemporaryDirectory(prefix="exasph_io_") as work:
+        globals()["test_" + args.test](Runner(args.exe, args.mpirun, work))
+    print(f"{args.test}: passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
