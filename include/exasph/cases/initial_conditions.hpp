@@ -1,6 +1,7 @@
 #pragma once
 #include <string>
 
+#include "exasph/exact/exact_density.hpp"
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/sph/eos.hpp"
 #include "exasph/util/box.hpp"
@@ -18,6 +19,7 @@ struct InitialConditions {
     double dt0 = 1e-6;                // first time step; also sets x_{-1} = x_0 - v_0 dt0
     double t_end = 0.0;               // default end time of the case
     std::string units = "code units"; // unit system of all fields, written to outputs
+    ExactDensity exact;               // the analytic density, when the case has one
 };
 
 } // namespace exasph

@@ -93,6 +93,7 @@ class Domain {
     const GlobalTree& global_tree() const { return tree_; }
     const HaloPlan& halo_plan() const { return plan_; }
     Collectives& collectives() { return coll_; }
+    MPI_Comm comm() const { return coll_.comm(); }
     int rank() const { return coll_.rank(); }
     int nranks() const { return coll_.size(); }
 

@@ -23,6 +23,8 @@ struct Config {
     int bucket_size = 64;       // local octree leaf size
     int global_bucket = 128;    // global (top) tree leaf size: the unit of MPI load balance
     CurveKind curve = CurveKind::hilbert;
+    bool lattice = false; // sedov/noh: regular lattice instead of the (cached) glass
+    std::vector<std::string> case_params; // --param KEY=VALUE: case parameters
 
     // Output and restart (issue 4).
     std::int64_t snapshot_every_steps = -1;   // -w N

@@ -1,10 +1,12 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
 #include "exasph/domain/collectives.hpp"
+#include "exasph/exact/exact_density.hpp"
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/util/block_sum.hpp"
 
@@ -20,18 +22,22 @@ struct Diagnostics {
     std::array<double, 3> angular_momentum{}; // about the origin
     double nc_min = 0, nc_mean = 0, nc_max = 0;
     double halo_ratio_mean = 0, halo_ratio_max = 0; // halos / owned over ranks
+    double rho_max = 0;                             // largest particle density
+    double l1_rho = -1; // mean |rho - rho_exact| (when the case has an exact solution, else -1)
 };
 
 // Layout of the diagnostics reduction: SumMax elements 0..10 below, then six for the extent of
 // the positions (which gives next step's box without another collective).
-inline constexpr std::size_t kDiagElements = 11;
+inline constexpr std::size_t kDiagElements = 12;
 inline constexpr std::size_t kDiagWithExtent = kDiagElements + 6;
 
 // This rank's contribution over its owned particles [0, n_owned); sums are independent of the
 // thread count (block_sum).
+// The density error needs rho and the positions it was computed at: after the update those
+// are x_{n-1} (= x_n of the step) at time t - dt.
 template <class T>
 void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_t n_halo,
-                       SumMax* out) {
+                       const ExactDensity& exact, double t_rho, SumMax* out) {
     const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
     const T *vx = ps.data(Field::vx), *vy = ps.data(Field::vy), *vz = ps.data(Field::vz);
     const T *m = ps.data(Field::m), *u = ps.data(Field::u), *nc = ps.data(Field::nc);
@@ -58,6 +64,18 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     out[9] = {double(n_owned), -nc_lo};
     double ratio = n_owned > 0 ? double(n_halo) / double(n_owned) : 0.0;
     out[10] = {ratio, ratio};
+    const T *rho = ps.data(Field::rho), *xp = ps.data(Field::x_m1), *yp = ps.data(Field::y_m1),
+            *zp = ps.data(Field::z_m1);
+    double l1 = 0, rho_max = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n_owned; ++i) {
+        rho_max = std::max(rho_max, double(rho[i]));
+        if (exact.valid()) {
+            double r =
+                std::sqrt(double(xp[i]) * xp[i] + double(yp[i]) * yp[i] + double(zp[i]) * zp[i]);
+            l1 += std::abs(double(rho[i]) - exact(r, t_rho));
+        }
+    }
+    out[11] = {l1, rho_max};
 }
 
 inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
@@ -73,6 +91,7 @@ inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
     d.nc_min = -e[9].max;
     d.halo_ratio_mean = e[10].sum / nranks;
     d.halo_ratio_max = e[10].max;
+    d.rho_max = e[11].max;
     return d;
 }
 

@@ -49,7 +49,8 @@ class DiagnosticsCsv {
         : out_(path, append ? std::ios::app : std::ios::trunc) {
         if (!out_) throw Error("cannot write " + path.string(), 3);
         if (append && std::filesystem::file_size(path) > 0) return;
-        out_ << "step,time,dt,n,ekin,eint,epot,etot,px,py,pz,lx,ly,lz,nc_min,nc_mean,nc_max";
+        out_ << "step,time,dt,n,ekin,eint,epot,etot,px,py,pz,lx,ly,lz,nc_min,nc_mean,nc_max,"
+                "rho_max,l1_rho";
         for (auto name : kPhaseNames) out_ << ",t_" << name;
         out_ << "\n";
     }
@@ -58,7 +59,7 @@ class DiagnosticsCsv {
                           (unsigned long long)d.n);
         for (double v : {d.ekin, d.eint, d.epot, d.etot, d.momentum[0], d.momentum[1],
                          d.momentum[2], d.angular_momentum[0], d.angular_momentum[1],
-                         d.angular_momentum[2], d.nc_min, d.nc_mean, d.nc_max})
+                         d.angular_momentum[2], d.nc_min, d.nc_mean, d.nc_max, d.rho_max, d.l1_rho})
             out_ << strprintf(",%.17g", v);
         for (double t : phases) out_ << strprintf(",%.6e", t);
         out_ << "\n";
@@ -146,7 +147,7 @@ inline std::unique_ptr<Simulation<double>> make_simulation(Config& cfg, std::str
         case_t_end = cp.ic.t_end;
         return std::make_unique<Simulation<double>>(cfg, std::move(cp.ic), cp.rs);
     }
-    auto ic = make_case<double>(cfg, rank, nranks);
+    auto ic = make_case<double>(cfg, MPI_COMM_WORLD, &std::cout);
     units = ic.units;
     case_t_end = ic.t_end;
     return std::make_unique<Simulation<double>>(cfg, std::move(ic));
@@ -238,7 +239,10 @@ inline int run(Config cfg, std::ostream& out) {
             out << strprintf("%6lld %12.6e %11.4e %16.9e %16.9e %6.3f %5.2f/%5.2f %9.3f ",
                              (long long)d.step, d.time, d.dt, d.etot, d.angular_momentum[2],
                              sim.imbalance(), d.halo_ratio_mean, d.halo_ratio_max, wstep)
-                << eta << "\n";
+                << eta
+                << (d.l1_rho >= 0 ? strprintf("  L1(rho) %.4f rho_max %.3f", d.l1_rho, d.rho_max)
+                                  : std::string())
+                << "\n";
             csv->write(d, sim.phase_times());
         }
         if (schedule.snapshot_due(sim.step_count(), sim.time())) {

@@ -68,7 +68,7 @@ class Simulation {
           kernel_(sinc_kernel(cfg.kernel_exponent)), nlists_(std::uint32_t(cfg.ngmax)),
           domain_(comm, std::uint32_t(cfg.global_bucket), std::uint32_t(cfg.bucket_size),
                   cfg.curve),
-          dt_m1_(ic.dt0), dt0_(ic.dt0) {
+          dt_m1_(ic.dt0), dt0_(ic.dt0), exact_(std::move(ic.exact)) {
         ps_.validate();
         if (restart) {
             time_ = restart->time;
@@ -123,6 +123,32 @@ class Simulation {
     }
     const EosParams& eos() const { return eos_; }
     double dt0() const { return dt0_; }
+
+    // Glass relaxation (damped SPH): after a step, stop every particle where it is and restore
+    // the internal energy, so that the next step moves particles only along the pressure forces.
+    void reset_to_rest(T u) {
+        for (std::size_t i = 0; i < n_owned(); ++i) {
+            ps_[Field::vx][i] = ps_[Field::vy][i] = ps_[Field::vz][i] = T(0);
+            ps_[Field::x_m1][i] = ps_[Field::x][i];
+            ps_[Field::y_m1][i] = ps_[Field::y][i];
+            ps_[Field::z_m1][i] = ps_[Field::z][i];
+            ps_[Field::u][i] = u;
+            ps_[Field::du_m1][i] = T(0);
+        }
+    }
+
+    // Relative standard deviation of the particle densities of the last step (output-time
+    // collective).
+    double density_scatter() const {
+        double s[3] = {0, 0, double(n_owned())};
+        for (std::size_t i = 0; i < n_owned(); ++i) {
+            s[0] += ps_[Field::rho][i];
+            s[1] += double(ps_[Field::rho][i]) * ps_[Field::rho][i];
+        }
+        MPI_Allreduce(MPI_IN_PLACE, s, 3, MPI_DOUBLE, MPI_SUM, domain_.comm());
+        double mean = s[0] / s[2];
+        return std::sqrt(std::max(s[1] / s[2] - mean * mean, 0.0)) / mean;
+    }
 
     // Steps are shortened so that the run ends exactly at t_end.
     void set_end_time(double t_end) { t_end_ = t_end; }
@@ -219,7 +245,7 @@ class Simulation {
     // SPEC 10 sums, and the extent of the particles for next step's box: one collective.
     void diagnose(double dt) {
         std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags);
-        local_diagnostics(ps_, n_owned(), domain_.n_halo(), e.data());
+        local_diagnostics(ps_, n_owned(), domain_.n_halo(), exact_, time_ - dt, e.data());
         Domain<T>::local_extent(ps_, n_owned(), e.data() + kDiagElements);
         for (std::size_t f = 0; f < kNumControlFlags; ++f)
             e[kDiagWithExtent + f] = {0.0, local_flags_[f]};
@@ -229,6 +255,7 @@ class Simulation {
             local_flags_[f] = 0.0;
         }
         diag_ = diagnostics_from(e.data(), domain_.nranks());
+        if (exact_.valid() && step_ > 0) diag_.l1_rho = e[11].sum / double(diag_.n);
         diag_.step = step_;
         diag_.time = time_;
         diag_.dt = dt;
@@ -251,6 +278,7 @@ class Simulation {
     std::int64_t step_ = 0;
     std::uint32_t max_list_ = 0;
     std::array<double, kNumControlFlags> local_flags_{}, flags_{};
+    ExactDensity exact_;
 };
 
 } // namespace exasph
