@@ -127,6 +127,12 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
     app.add_option("--alpha", cfg.alpha, "Artificial viscosity alpha")
         ->check(CLI::Range(0.0, 10.0))
         ->capture_default_str();
+    app.add_flag("--av-switch", cfg.av_switch,
+                 "Per-particle artificial viscosity (Morris & Monaghan): alpha between "
+                 "--alpha-min and --alpha, raised by compression");
+    app.add_option("--alpha-min", cfg.alpha_min, "AV switch: smallest alpha")
+        ->check(CLI::Range(0.0, 10.0))
+        ->capture_default_str();
     app.add_option("--threads", cfg.threads, "OpenMP threads (default: OMP_NUM_THREADS or all)")
         ->check(CLI::Range(1, 4096));
     app.add_option("--param", cfg.case_params,
@@ -307,7 +313,7 @@ int main(int argc, char** argv) {
     if (!cfg.restart_file.empty()) {
         for (const char* opt :
              {"--init", "-n", "--ng0", "--ngmax", "--kernel-exponent", "--courant", "--alpha",
-              "--global-bucket", "--leaf-size", "--curve"})
+              "--global-bucket", "--leaf-size", "--curve", "--av-switch", "--alpha-min"})
             if (app.count(opt) > 0)
                 return finish_with_error(std::string(opt) +
                                              " cannot be changed on --restart (the checkpoint "

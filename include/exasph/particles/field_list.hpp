@@ -40,6 +40,8 @@ enum class Field : std::uint8_t {
     du,       // du/dt
     vsig_max, // max_b v^sig_ab (SPEC 6, time step)
     nc,       // neighbour count within 2h (SPEC 2)
+    alpha,    // artificial-viscosity coefficient (constant, or evolved by the AV switch)
+    divv,     // velocity divergence (IAD), drives the AV switch
     count_    // number of fields (not a field)
 };
 
@@ -99,6 +101,8 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::du,       "du",       "energy/mass/time", kDerived | kSnapshot, "du/dt"},
     {Field::vsig_max, "vsig_max", "length/time", kDerived, "max signal velocity over neighbours"},
     {Field::nc,       "nc",       "1",           kDerived | kSnapshot, "neighbour count within 2h"},
+    {Field::alpha,    "alpha",    "1",           kState | kHaloSync | kSnapshot, "artificial viscosity alpha"},
+    {Field::divv,     "divv",     "1/time",      kDerived, "velocity divergence"},
 }};
 // clang-format on
 

@@ -18,7 +18,10 @@ struct Config {
     int ngmax = 150;            // neighbour cap: exceeding it is reported
     double kernel_exponent = 6; // sinc exponent n (SPEC 1)
     double courant = 0.2;       // K_cour (SPEC 7)
-    double alpha = 1.0;         // artificial viscosity (SPEC 6)
+    double alpha = 1.0;         // artificial viscosity (SPEC 6); the maximum with --av-switch
+    bool av_switch = false;     // evolve alpha per particle (Morris & Monaghan)
+    double alpha_min = 0.05;    // AV switch: floor of alpha
+    double av_decay = 0.2;      // AV switch: decay rate in sound-crossing times of h
     int threads = 0;            // 0: OpenMP default
     int bucket_size = 64;       // local octree leaf size
     int global_bucket = 128;    // global (top) tree leaf size: the unit of MPI load balance

@@ -39,6 +39,8 @@ void write_run_attributes(const h5::Group& g, const Config& cfg, const Box<T>& b
     h5::write_attribute(g, "param:kernel_exponent", cfg.kernel_exponent);
     h5::write_attribute(g, "param:courant", cfg.courant);
     h5::write_attribute(g, "param:alpha", cfg.alpha);
+    h5::write_attribute(g, "param:av_switch", std::int64_t(cfg.av_switch));
+    h5::write_attribute(g, "param:alpha_min", cfg.alpha_min);
     h5::write_attribute(g, "param:leaf_size", std::int64_t(cfg.bucket_size));
     h5::write_attribute(g, "param:global_bucket", std::int64_t(cfg.global_bucket));
     h5::write_attribute(g, "param:curve", std::string(curve_name(cfg.curve)));
@@ -59,6 +61,8 @@ inline void read_run_parameters(const h5::Group& g, Config& cfg) {
     cfg.kernel_exponent = num("param:kernel_exponent");
     cfg.courant = num("param:courant");
     cfg.alpha = num("param:alpha");
+    cfg.av_switch = num("param:av_switch") != 0;
+    cfg.alpha_min = num("param:alpha_min");
     cfg.bucket_size = int(num("param:leaf_size"));
     cfg.global_bucket = int(num("param:global_bucket"));
     cfg.curve = h5::read_attribute_string(g, "param:curve") == "morton" ? CurveKind::morton

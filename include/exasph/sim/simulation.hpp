@@ -10,6 +10,7 @@
 #include "exasph/domain/domain.hpp"
 #include "exasph/sim/config.hpp"
 #include "exasph/sim/diagnostics.hpp"
+#include "exasph/sph/av_switch.hpp"
 #include "exasph/sph/hydro.hpp"
 #include "exasph/sph/integrator.hpp"
 #include "exasph/sph/sinc_kernel.hpp"
@@ -76,6 +77,7 @@ class Simulation {
             dt_m1_ = restart->dt_m1;
             domain_.restore(ps_, restart->leaf_keys);
         } else {
+            std::fill(ps_[Field::alpha].begin(), ps_[Field::alpha].end(), T(cfg.alpha));
             domain_.init(ps_, box_);
         }
         diagnose(0.0);
@@ -97,11 +99,12 @@ class Simulation {
         compute_iad(ps_, nlists_, box_, kernel_.view());
         domain_.exchange_halos(ps_, kHaloIad);
         timer_.stop(kIad);
-        compute_momentum_energy(ps_, nlists_, box_, kernel_.view(), T(cfg_.alpha));
+        compute_momentum_energy(ps_, nlists_, box_, kernel_.view());
         timer_.stop(kMomentumEnergy);
         double dt = choose_time_step();
         timer_.stop(kTimeStep);
         update_state(dt);
+        if (cfg_.av_switch) update_viscosity(dt);
         timer_.stop(kUpdate);
         update_smoothing_lengths();
         timer_.stop(kSmoothingLength);
@@ -231,6 +234,17 @@ class Simulation {
                                                     p[Field::du_m1][i], dt, dt_m1);
             p[Field::du_m1][i] = p[Field::du][i];
         }
+    }
+
+    // The AV switch: alpha follows the compression of the step (SPEC 6, sph/av_switch.hpp).
+    void update_viscosity(double dt) {
+        T* alpha = ps_.data(Field::alpha);
+        const T *divv = ps_.data(Field::divv), *h = ps_.data(Field::h), *c = ps_.data(Field::c);
+        const auto n = static_cast<std::int64_t>(n_owned());
+        const T amin = T(cfg_.alpha_min), amax = T(cfg_.alpha), decay = T(cfg_.av_decay);
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i)
+            alpha[i] = evolve_alpha(alpha[i], divv[i], h[i], c[i], T(dt), amin, amax, decay);
     }
 
     void update_smoothing_lengths() {

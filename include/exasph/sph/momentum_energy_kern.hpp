@@ -14,6 +14,7 @@ struct MomentumEnergyResult {
     T ax, ay, az;
     T du;
     T vsig_max;
+    T divv; // sum_b (m_b / rho_b) (v_b - v_a) . A_ab(h_a)
 };
 
 // C (x) d for the symmetric IAD matrix of particle i.
@@ -29,9 +30,10 @@ EXASPH_HD IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T d
             c13 * dx + c23 * dy + c33 * dz};
 }
 
-// SPEC 6 with IAD gradients (SPEC 5), over a symmetric neighbour list (r_ab < 2 max(h_a, h_b)),
-// which makes every pair's contribution appear with opposite sign in b's sum: momentum is
-// conserved to round-off and energy up to time-integration error.
+// SPEC 6 with IAD gradients, with a per-particle alpha (SPEC 6's "later switch") (SPEC 5), over a
+// symmetric neighbour list (r_ab < 2 max(h_a, h_b)), which makes every pair's contribution appear
+// with opposite sign in b's sum: momentum is conserved to round-off and energy up to
+// time-integration error.
 //   A_ab(h_a) = C_a (x_b - x_a) W_ab(h_a),  A_ab(h_b) = C_b (x_b - x_a) W_ab(h_b)
 //   dv_a/dt = -sum_b m_b [P_a/(Om_a rho_a^2) A_ab(h_a) + P_b/(Om_b rho_b^2) A_ab(h_b)]
 //             -1/2 sum_b m_b Pi_ab [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
@@ -40,15 +42,16 @@ EXASPH_HD IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T d
 template <class T>
 EXASPH_HD MomentumEnergyResult<T> momentum_energy_kern(std::uint32_t a, NeighbourSpan nb,
                                                        const ParticleView<T>& p, const Box<T>& box,
-                                                       const KernelView<T>& k, T alpha) {
+                                                       const KernelView<T>& k) {
     const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
     const T *h = p[Field::h], *m = p[Field::m], *rho = p[Field::rho];
     const T *pr = p[Field::p], *c = p[Field::c], *omega = p[Field::omega];
+    const T* alpha = p[Field::alpha];
     const T ha = h[a], inv_ha = T(1) / ha, inv_ha3 = inv_ha * inv_ha * inv_ha;
     const T rho_a = rho[a], inv_rho_a = T(1) / rho_a;
     const T pa = pr[a] / (omega[a] * rho_a * rho_a);
-    T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0;
+    T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0, divv = 0;
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         const std::uint32_t b = nb.index[n];
         // d = x_b - x_a = -r_ab
@@ -69,7 +72,9 @@ EXASPH_HD MomentumEnergyResult<T> momentum_energy_kern(std::uint32_t a, Neighbou
         T w_ab = r > T(0) ? vr / r : T(0);
         T vsig = c[a] + c[b] - T(3) * w_ab;
         vsig_max = vsig > vsig_max ? vsig : vsig_max;
-        T pi_ab = vr < T(0) ? T(-0.5) * alpha * vsig * w_ab : T(0);
+        // alpha_ab = (alpha_a + alpha_b)/2 keeps Pi_ab symmetric (= alpha for a constant alpha)
+        T alpha_ab = T(0.5) * (alpha[a] + alpha[b]);
+        T pi_ab = vr < T(0) ? T(-0.5) * alpha_ab * vsig * w_ab : T(0);
         T pb = pr[b] / (omega[b] * rho[b] * rho[b]);
         T inv_rho_b = T(1) / rho[b];
         T mb = m[b];
@@ -80,10 +85,12 @@ EXASPH_HD MomentumEnergyResult<T> momentum_energy_kern(std::uint32_t a, Neighbou
         ax -= mb * (pa * aax + pb * abx + half_pi * gx);
         ay -= mb * (pa * aay + pb * aby + half_pi * gy);
         az -= mb * (pa * aaz + pb * abz + half_pi * gz);
-        du_p += mb * (vabx * aax + vaby * aay + vabz * aaz);
+        T v_dot_a = vabx * aax + vaby * aay + vabz * aaz;
+        du_p += mb * v_dot_a;
+        divv -= mb * inv_rho_b * v_dot_a;
         du_av += mb * pi_ab * (vabx * gx + vaby * gy + vabz * gz);
     }
-    return {ax, ay, az, pa * du_p + T(0.25) * du_av, vsig_max};
+    return {ax, ay, az, pa * du_p + T(0.25) * du_av, vsig_max, divv};
 }
 
 } // namespace exasph

@@ -45,7 +45,8 @@ Sums conservation_sums(NeighbourCriterion crit) {
     compute_density(ps, nl, box, k.view());
     compute_eos(ps, EosParams{}, ps.size());
     compute_iad(ps, nl, box, k.view());
-    compute_momentum_energy(ps, nl, box, k.view(), 1.0);
+    std::fill(ps[Field::alpha].begin(), ps[Field::alpha].end(), 1.0);
+    compute_momentum_energy(ps, nl, box, k.view());
 
     double sum_ma[3] = {0, 0, 0}, sum_abs_ma = 0, sum_e = 0, sum_abs_va = 0;
     std::size_t approaching = 0;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "exasph/sph/av_switch.hpp"
 #include "exasph/sph/integrator.hpp"
 #include "exasph/sph/smoothing_length.hpp"
 #include "exasph/sph/timestep.hpp"
@@ -51,4 +52,17 @@ TEST(TimeStep, CourantAndGrowthLimit) {
     EXPECT_DOUBLE_EQ(courant_time_step(1.0, 0.0, 5.0, 0.2), 0.2);
     EXPECT_DOUBLE_EQ(limit_time_step(1.0, 0.5), 0.55);
     EXPECT_DOUBLE_EQ(limit_time_step(0.3, 0.5), 0.3);
+}
+
+TEST(AvSwitch, RisesUnderCompressionAndDecaysWithout) {
+    // No compression: alpha relaxes towards alpha_min with e-folding time h / (decay c).
+    double a = evolve_alpha(1.0, 0.0, 1.0, 1.0, 5.0, 0.05, 1.0, 0.2);
+    EXPECT_NEAR(a, 0.05 + 0.95 * std::exp(-1.0), 1e-12);
+    // Expansion does not raise it.
+    EXPECT_LE(evolve_alpha(0.1, 5.0, 1.0, 1.0, 0.1, 0.05, 1.0, 0.2), 0.1);
+    // Strong compression drives it to alpha_max and no further.
+    EXPECT_DOUBLE_EQ(evolve_alpha(0.05, -1e3, 1.0, 1.0, 0.1, 0.05, 1.0, 0.2), 1.0);
+    double up = evolve_alpha(0.05, -1.0, 1.0, 1.0, 0.1, 0.05, 1.0, 0.2);
+    EXPECT_GT(up, 0.05);
+    EXPECT_LT(up, 1.0);
 }
