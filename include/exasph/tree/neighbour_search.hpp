@@ -56,6 +56,18 @@ inline T node_distance2(const OctreeNode<T>& nd, const T p[3], const Box<T>& box
     return d2;
 }
 
+// Squared minimum-image distance between two nodes' boxes, slightly reduced (conservative).
+template <class T>
+inline T box_distance2(const OctreeNode<T>& a, const OctreeNode<T>& b, const Box<T>& box) {
+    T d2 = 0;
+    for (int d = 0; d < 3; ++d) {
+        T dc = box.min_image(T(0.5) * (a.lo[d] + a.hi[d]) - T(0.5) * (b.lo[d] + b.hi[d]), d);
+        T gap = std::abs(dc) - T(0.5) * ((a.hi[d] - a.lo[d]) + (b.hi[d] - b.lo[d])) * T(1.000000001);
+        if (gap > 0) d2 += gap * gap;
+    }
+    return d2;
+}
+
 // Neighbours of particle i (self excluded), in tree order. Writes at most `cap` indices to `out`
 // and returns the true count, which may exceed `cap`.
 template <class T>
@@ -147,24 +159,88 @@ class NeighbourLists {
     }
 
   private:
+    // One tree walk per leaf group (DESIGN: "one tree walk serves a whole group"): the walk
+    // collects the leaves within reach of the group's box, then each particle of the group tests
+    // only those leaves' boxes and particles.
     std::uint32_t search_all(const Octree<T>& owned, const Octree<T>* halos, const SearchView<T>& p,
                              const Box<T>& box, NeighbourCriterion crit) {
         const auto& leaves = owned.leaves();
         std::uint32_t max_count = 0;
-#pragma omp parallel for schedule(dynamic, 8) reduction(max : max_count)
-        for (std::size_t l = 0; l < leaves.size(); ++l) {
-            const auto& nd = owned.nodes()[leaves[l]];
-            for (std::uint32_t i = nd.begin; i < nd.end; ++i) {
-                std::uint32_t* out = index_.data() + std::size_t(i) * stride_;
-                std::uint32_t c = find_neighbours(owned, p, box, crit, i, out, stride_);
-                if (halos)
-                    c += find_neighbours(*halos, p, box, crit, i, out + std::min(c, stride_),
-                                         stride_ - std::min(c, stride_));
-                count_[i] = std::min(c, stride_);
-                max_count = std::max(max_count, c);
+#pragma omp parallel reduction(max : max_count)
+        {
+            std::vector<const OctreeNode<T>*> candidates;
+#pragma omp for schedule(dynamic, 4)
+            for (std::size_t l = 0; l < leaves.size(); ++l) {
+                const auto& group = owned.nodes()[leaves[l]];
+                candidates.clear();
+                collect_leaves(owned, group, box, crit, candidates);
+                if (halos) collect_leaves(*halos, group, box, crit, candidates);
+                for (std::uint32_t i = group.begin; i < group.end; ++i) {
+                    std::uint32_t c = neighbours_in(candidates, p, box, crit, i,
+                                                    index_.data() + std::size_t(i) * stride_);
+                    count_[i] = std::min(c, stride_);
+                    max_count = std::max(max_count, c);
+                }
             }
         }
         return max_count;
+    }
+
+    // Leaves of `tree` that may hold a neighbour of some particle of `group`.
+    static void collect_leaves(const Octree<T>& tree, const OctreeNode<T>& group, const Box<T>& box,
+                               NeighbourCriterion crit, std::vector<const OctreeNode<T>*>& out) {
+        const auto& nodes = tree.nodes();
+        if (nodes.empty()) return;
+        std::uint32_t stack[8 * 64];
+        int top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const auto& nd = nodes[stack[--top]];
+            T reach = T(2) * (crit == NeighbourCriterion::symmetric ? std::max(group.hmax, nd.hmax)
+                                                                    : group.hmax);
+            if (box_distance2(group, nd, box) >= reach * reach) continue;
+            if (nd.first_child < 0) {
+                out.push_back(&nd);
+                continue;
+            }
+            for (std::uint32_t c = nd.num_children; c-- > 0;)
+                stack[top++] = static_cast<std::uint32_t>(nd.first_child) + c;
+        }
+    }
+
+    // Neighbours of particle i among the candidate leaves; writes at most stride_ indices and
+    // returns the true count.
+    std::uint32_t neighbours_in(const std::vector<const OctreeNode<T>*>& candidates,
+                                const SearchView<T>& p, const Box<T>& box, NeighbourCriterion crit,
+                                std::uint32_t i, std::uint32_t* out) const {
+        const T pos[3] = {p.x[i], p.y[i], p.z[i]};
+        const T hi = p.h[i];
+        std::uint32_t count = 0;
+        // Within a leaf: a branch-free pass that the compiler vectorises, then compaction.
+        constexpr std::uint32_t kMaxLeaf = 512;
+        unsigned char hit[kMaxLeaf];
+        for (const OctreeNode<T>* leaf : candidates) {
+            T reach = T(2) * (crit == NeighbourCriterion::symmetric ? std::max(hi, leaf->hmax) : hi);
+            if (node_distance2(*leaf, pos, box) >= reach * reach) continue;
+            const std::uint32_t b = leaf->begin, n = leaf->end - leaf->begin;
+            if (n > kMaxLeaf) {
+                for (std::uint32_t j = b; j < leaf->end; ++j) {
+                    if (j == i || !is_neighbour(pair_distance2(p, box, i, j), hi, p.h[j], crit))
+                        continue;
+                    if (count < stride_) out[count] = j;
+                    ++count;
+                }
+                continue;
+            }
+            for (std::uint32_t k = 0; k < n; ++k)
+                hit[k] = is_neighbour(pair_distance2(p, box, i, b + k), hi, p.h[b + k], crit);
+            for (std::uint32_t k = 0; k < n; ++k) {
+                if (!hit[k] || b + k == i) continue;
+                if (count < stride_) out[count] = b + k;
+                ++count;
+            }
+        }
+        return count;
     }
 
     std::uint32_t stride_;
