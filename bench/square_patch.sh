@@ -19,10 +19,7 @@ for r in $(seq "$repeats"); do
         > "$out/log$r"
 done
 
-median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
-value() { # SED-REGEX with one group: the number it captures, median over the runs
-    for r in $(seq "$repeats"); do sed -nE "s|.*$1.*|\1|p" "$out/log$r"; done | median
-}
+. "$root/bench/lib.sh"
 echo "command: exasph --init square-patch -n $side -s $steps --threads $threads (median of $repeats)"
 echo
 echo "| particles | threads | particle-steps/s | per core | peak RSS B/particle |"
@@ -33,14 +30,6 @@ echo "| $n | $threads | $(value 'particle-steps/s ([0-9.e+-]+),') |" \
 echo
 echo "| phase | s/step (median) |"
 echo "|---|---|"
-phases=$(grep 'seconds per step by phase' "$out/log1" | sed 's/.*phase[^:]*: //')
-set -- $phases
-while [ $# -ge 2 ]; do
-    name=$1
-    vals=$(for r in $(seq "$repeats"); do
-        grep 'seconds per step by phase' "$out/log$r" | sed 's/.*phase[^:]*: //' |
-            awk -v k="$name" '{for (i = 1; i < NF; i += 2) if ($i == k) print $(i+1)}'
-    done | median)
-    echo "| $name | $vals |"
-    shift 2
+for name in $(phase_names); do
+    echo "| $name | $(phase "$name") |"
 done

@@ -1,0 +1,20 @@
+# Shared by the bench scripts: medians over repeated runs of exasph's summary lines.
+# Logs are $out/log1 .. $out/log$repeats.
+
+median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+
+# value REGEX-WITH-ONE-GROUP: the captured number, median over the runs
+value() {
+    for r in $(seq "$repeats"); do sed -nE "s|.*$1.*|\1|p" "$out/log$r"; done | median
+}
+
+# phase NAME: median seconds per step of one phase
+phase() {
+    for r in $(seq "$repeats"); do
+        grep 'seconds per step by phase' "$out/log$r" | sed 's/.*phase[^:]*: //' |
+            awk -v k="$1" '{for (i = 1; i < NF; i += 2) if ($i == k) print $(i+1)}'
+    done | median
+}
+
+phase_names() { grep 'seconds per step by phase' "$out/log1" | sed 's/.*phase[^:]*: //' |
+    awk '{for (i = 1; i < NF; i += 2) printf "%s ", $i}'; }
