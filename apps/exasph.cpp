@@ -130,6 +130,8 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
     app.add_flag("--av-switch", cfg.av_switch,
                  "Per-particle artificial viscosity (Morris & Monaghan): alpha between "
                  "--alpha-min and --alpha, raised by compression");
+    app.add_flag("--volume-elements", cfg.volume_elements,
+                 "Generalised volume elements X = (m/rho)^0.7 instead of standard SPH volumes");
     app.add_option("--alpha-min", cfg.alpha_min, "AV switch: smallest alpha")
         ->check(CLI::Range(0.0, 10.0))
         ->capture_default_str();
@@ -311,9 +313,9 @@ int main(int argc, char** argv) {
         return finish_with_error(e.what(), e.exit_code(), e.all_ranks());
     }
     if (!cfg.restart_file.empty()) {
-        for (const char* opt :
-             {"--init", "-n", "--ng0", "--ngmax", "--kernel-exponent", "--courant", "--alpha",
-              "--global-bucket", "--leaf-size", "--curve", "--av-switch", "--alpha-min"})
+        for (const char* opt : {"--init", "-n", "--ng0", "--ngmax", "--kernel-exponent",
+                                "--courant", "--alpha", "--global-bucket", "--leaf-size", "--curve",
+                                "--av-switch", "--alpha-min", "--volume-elements"})
             if (app.count(opt) > 0)
                 return finish_with_error(std::string(opt) +
                                              " cannot be changed on --restart (the checkpoint "

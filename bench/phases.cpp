@@ -49,6 +49,7 @@ struct Setup {
             ps[Field::u][i] = 1.0;
             ps[Field::alpha][i] = 1.0;
         }
+        ps[Field::xm] = ps[Field::m];
         keys = sort_along_curve(ps, box, CurveKind::hilbert);
         build_tree();
         search();
@@ -143,7 +144,11 @@ BENCHMARK(BM_NeighbourSearch)->Arg(30)->Arg(50)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Density)->Arg(30)->Arg(50)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Iad)->Arg(30)->Arg(50)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MomentumEnergy)->Arg(30)->Arg(50)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_DomainSyncAndHaloExchange)->Arg(30)->Arg(50)->Iterations(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DomainSyncAndHaloExchange)
+    ->Arg(30)
+    ->Arg(50)
+    ->Iterations(10)
+    ->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
     int provided = 0;
@@ -151,7 +156,8 @@ int main(int argc, char** argv) {
     benchmark::Initialize(&argc, argv);
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    if (rank == 0) benchmark::RunSpecifiedBenchmarks();
+    if (rank == 0)
+        benchmark::RunSpecifiedBenchmarks();
     else {
         Silent silent; // other ranks take part (halo exchange) but do not print
         benchmark::RunSpecifiedBenchmarks(&silent);

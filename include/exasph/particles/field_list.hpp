@@ -42,6 +42,8 @@ enum class Field : std::uint8_t {
     nc,       // neighbour count within 2h (SPEC 2)
     alpha,    // artificial-viscosity coefficient (constant, or evolved by the AV switch)
     divv,     // velocity divergence (IAD), drives the AV switch
+    xm,       // volume-element weight X (= m for standard SPH; (m/rho)^p with volume elements)
+    kx,       // volume-element normalisation k = sum_b X_b W_ab
     count_    // number of fields (not a field)
 };
 
@@ -103,6 +105,8 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::nc,       "nc",       "1",           kDerived | kSnapshot, "neighbour count within 2h"},
     {Field::alpha,    "alpha",    "1",           kState | kHaloSync | kSnapshot, "artificial viscosity alpha"},
     {Field::divv,     "divv",     "1/time",      kDerived, "velocity divergence"},
+    {Field::xm,       "xm",       "volume^p",    kState | kHaloSync, "volume-element weight X"},
+    {Field::kx,       "kx",       "volume^(p-1)", kDerived | kHaloDensity, "volume-element normalisation k"},
 }};
 // clang-format on
 

@@ -78,6 +78,7 @@ class Simulation {
             domain_.restore(ps_, restart->leaf_keys);
         } else {
             std::fill(ps_[Field::alpha].begin(), ps_[Field::alpha].end(), T(cfg.alpha));
+            ps_[Field::xm] = ps_[Field::m]; // standard SPH weights for the first density
             domain_.init(ps_, box_);
         }
         diagnose(0.0);
@@ -107,6 +108,7 @@ class Simulation {
         if (cfg_.av_switch) update_viscosity(dt);
         timer_.stop(kUpdate);
         update_smoothing_lengths();
+        if (cfg_.volume_elements) update_volume_weights();
         timer_.stop(kSmoothingLength);
         time_ += dt;
         dt_m1_ = dt;
@@ -245,6 +247,16 @@ class Simulation {
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i)
             alpha[i] = evolve_alpha(alpha[i], divv[i], h[i], c[i], T(dt), amin, amax, decay);
+    }
+
+    // Volume elements: X_a = (m_a / rho_a)^p from this step's density, used by the next step.
+    void update_volume_weights() {
+        T* xm = ps_.data(Field::xm);
+        const T *m = ps_.data(Field::m), *rho = ps_.data(Field::rho);
+        const auto n = static_cast<std::int64_t>(n_owned());
+        const double pw = cfg_.ve_exponent;
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i) xm[i] = T(std::pow(double(m[i] / rho[i]), pw));
     }
 
     void update_smoothing_lengths() {

@@ -12,24 +12,27 @@ namespace exasph {
 template <class T>
 struct DensityResult {
     T rho;
+    T kx; // k_a = sum_b X_b W_ab(h_a): the volume-element normalisation (= rho when X = m)
     T omega;
     std::uint32_t nc; // neighbours with r < 2 h_a, self excluded (SPEC 2)
 };
 
-// SPEC 3: rho_a = sum_b m_b W_ab(h_a) including b = a, and the grad-h term
-// Omega_a = 1 - 1/(3 rho_a h_a^3) sum_b m_b (3 w(v) + v w'(v)).
+// SPEC 3 with generalised volume elements (Hopkins 2013; Cabezon et al. 2017): every particle
+// carries a weight X (X = m gives standard SPH exactly), k_a = sum_b X_b W_ab(h_a) including
+// b = a, V_a = X_a / k_a, rho_a = m_a / V_a, and the grad-h term
+// Omega_a = 1 - 1/(3 k_a h_a^3) sum_b X_b (3 w(v) + v w'(v)).
 template <class T>
 EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
                                         const Box<T>& box, const KernelView<T>& k) {
     const T* x = p[Field::x];
     const T* y = p[Field::y];
     const T* z = p[Field::z];
-    const T* m = p[Field::m];
+    const T* xm = p[Field::xm];
     const T ha = p[Field::h][a];
     const T inv_h = T(1) / ha;
     const T w0 = k.value(T(0));
-    double rho_sum = m[a] * w0; // w(v) sums, divided by h^3 at the end
-    double dh_sum = m[a] * T(3) * w0;
+    double k_sum = xm[a] * w0; // w(v) sums, divided by h^3 at the end
+    double dh_sum = xm[a] * T(3) * w0;
     std::uint32_t nc = 0;
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         std::uint32_t b = nb.index[n];
@@ -41,13 +44,14 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb, const
         ++nc;
         T v = std::sqrt(r2) * inv_h;
         T w = k.value(v);
-        rho_sum += m[b] * w;
-        dh_sum += m[b] * (T(3) * w + v * k.derivative(v));
+        k_sum += xm[b] * w;
+        dh_sum += xm[b] * (T(3) * w + v * k.derivative(v));
     }
     T h3 = ha * ha * ha;
-    T rho = static_cast<T>(rho_sum) / h3;
-    T omega = T(1) - static_cast<T>(dh_sum) / (T(3) * rho * h3);
-    return {rho, omega, nc};
+    T kx = static_cast<T>(k_sum) / h3;
+    T rho = kx * (p[Field::m][a] / xm[a]); // m/X = 1 exactly for standard SPH
+    T omega = T(1) - static_cast<T>(dh_sum) / (T(3) * kx * h3);
+    return {rho, kx, omega, nc};
 }
 
 } // namespace exasph

@@ -31,6 +31,7 @@ void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<
     for (std::int64_t i = 0; i < n; ++i) {
         auto r = density_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k);
         p[Field::rho][i] = r.rho;
+        p[Field::kx][i] = r.kx;
         p[Field::omega][i] = r.omega;
         p[Field::nc][i] = T(r.nc);
     }

@@ -36,15 +36,16 @@ EXASPH_HD IadResult<T> invert_symmetric3(T t11, T t12, T t13, T t22, T t23, T t3
             singular};
 }
 
-// SPEC 5: tau_a = sum_b (m_b / rho_b) (x_b - x_a) (x) (x_b - x_a) W_ab(h_a), C_a = tau_a^{-1}.
+// SPEC 5, with the volume V_b = X_b / k_b (= m_b / rho_b for standard SPH):
+// tau_a = sum_b V_b (x_b - x_a) (x) (x_b - x_a) W_ab(h_a), C_a = tau_a^{-1}.
 template <class T>
 EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
                                 const Box<T>& box, const KernelView<T>& k) {
     const T* x = p[Field::x];
     const T* y = p[Field::y];
     const T* z = p[Field::z];
-    const T* m = p[Field::m];
-    const T* rho = p[Field::rho];
+    const T* xm = p[Field::xm];
+    const T* kx = p[Field::kx];
     const T ha = p[Field::h][a];
     const T inv_h = T(1) / ha;
     T t11 = 0, t12 = 0, t13 = 0, t22 = 0, t23 = 0, t33 = 0;
@@ -55,7 +56,7 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const Particl
         T dz = box.min_image(z[b] - z[a], 2);
         T r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= T(4) * ha * ha) continue;
-        T vw = m[b] / rho[b] * k.value(std::sqrt(r2) * inv_h);
+        T vw = xm[b] / kx[b] * k.value(std::sqrt(r2) * inv_h); // V_b W_ab(h_a)
         t11 += dx * dx * vw;
         t12 += dx * dy * vw;
         t13 += dx * dz * vw;

@@ -14,7 +14,7 @@ struct MomentumEnergyResult {
     T ax, ay, az;
     T du;
     T vsig_max;
-    T divv; // sum_b (m_b / rho_b) (v_b - v_a) . A_ab(h_a)
+    T divv; // sum_b V_b (v_b - v_a) . A_ab(h_a)
 };
 
 // C (x) d for the symmetric IAD matrix of particle i.
@@ -36,6 +36,7 @@ EXASPH_HD IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T d
 // time-integration error.
 //   A_ab(h_a) = C_a (x_b - x_a) W_ab(h_a),  A_ab(h_b) = C_b (x_b - x_a) W_ab(h_b)
 //   dv_a/dt = -sum_b m_b [P_a/(Om_a rho_a^2) A_ab(h_a) + P_b/(Om_b rho_b^2) A_ab(h_b)]
+//             (with volume elements: -sum_b (X_a X_b / m_a) [P_a/(Om_a k_a^2) A_ab(h_a) + ...])
 //             -1/2 sum_b m_b Pi_ab [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
 //   du_a/dt = P_a/(Om_a rho_a^2) sum_b m_b v_ab . A_ab(h_a)
 //             +1/4 sum_b m_b Pi_ab v_ab . [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
@@ -50,7 +51,11 @@ EXASPH_HD MomentumEnergyResult<T> momentum_energy_kern(std::uint32_t a, Neighbou
     const T* alpha = p[Field::alpha];
     const T ha = h[a], inv_ha = T(1) / ha, inv_ha3 = inv_ha * inv_ha * inv_ha;
     const T rho_a = rho[a], inv_rho_a = T(1) / rho_a;
-    const T pa = pr[a] / (omega[a] * rho_a * rho_a);
+    const T *xm = p[Field::xm], *kx = p[Field::kx];
+    // Volume elements: the pressure terms carry X_a X_b / m_a and 1/k^2 in place of m_b and
+    // 1/rho^2 (identical for X = m, where X_a / m_a = 1 and k = rho).
+    const T xa_ma = xm[a] / m[a];
+    const T pa = pr[a] / (omega[a] * kx[a] * kx[a]) * xa_ma;
     T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0, divv = 0;
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         const std::uint32_t b = nb.index[n];
@@ -75,19 +80,20 @@ EXASPH_HD MomentumEnergyResult<T> momentum_energy_kern(std::uint32_t a, Neighbou
         // alpha_ab = (alpha_a + alpha_b)/2 keeps Pi_ab symmetric (= alpha for a constant alpha)
         T alpha_ab = T(0.5) * (alpha[a] + alpha[b]);
         T pi_ab = vr < T(0) ? T(-0.5) * alpha_ab * vsig * w_ab : T(0);
-        T pb = pr[b] / (omega[b] * rho[b] * rho[b]);
+        T pb = pr[b] / (omega[b] * kx[b] * kx[b]) * xa_ma;
         T inv_rho_b = T(1) / rho[b];
         T mb = m[b];
         T gx = aax * inv_rho_a + abx * inv_rho_b; // A(h_a)/rho_a + A(h_b)/rho_b
         T gy = aay * inv_rho_a + aby * inv_rho_b;
         T gz = aaz * inv_rho_a + abz * inv_rho_b;
         T half_pi = T(0.5) * pi_ab;
-        ax -= mb * (pa * aax + pb * abx + half_pi * gx);
-        ay -= mb * (pa * aay + pb * aby + half_pi * gy);
-        az -= mb * (pa * aaz + pb * abz + half_pi * gz);
+        T xb = xm[b];
+        ax -= xb * (pa * aax + pb * abx) + mb * half_pi * gx;
+        ay -= xb * (pa * aay + pb * aby) + mb * half_pi * gy;
+        az -= xb * (pa * aaz + pb * abz) + mb * half_pi * gz;
         T v_dot_a = vabx * aax + vaby * aay + vabz * aaz;
-        du_p += mb * v_dot_a;
-        divv -= mb * inv_rho_b * v_dot_a;
+        du_p += xb * v_dot_a;
+        divv -= xb / kx[b] * v_dot_a;
         du_av += mb * pi_ab * (vabx * gx + vaby * gy + vabz * gz);
     }
     return {ax, ay, az, pa * du_p + T(0.25) * du_av, vsig_max, divv};

@@ -62,7 +62,8 @@ inline T box_distance2(const OctreeNode<T>& a, const OctreeNode<T>& b, const Box
     T d2 = 0;
     for (int d = 0; d < 3; ++d) {
         T dc = box.min_image(T(0.5) * (a.lo[d] + a.hi[d]) - T(0.5) * (b.lo[d] + b.hi[d]), d);
-        T gap = std::abs(dc) - T(0.5) * ((a.hi[d] - a.lo[d]) + (b.hi[d] - b.lo[d])) * T(1.000000001);
+        T gap =
+            std::abs(dc) - T(0.5) * ((a.hi[d] - a.lo[d]) + (b.hi[d] - b.lo[d])) * T(1.000000001);
         if (gap > 0) d2 += gap * gap;
     }
     return d2;
@@ -220,7 +221,8 @@ class NeighbourLists {
         constexpr std::uint32_t kMaxLeaf = 512;
         unsigned char hit[kMaxLeaf];
         for (const OctreeNode<T>* leaf : candidates) {
-            T reach = T(2) * (crit == NeighbourCriterion::symmetric ? std::max(hi, leaf->hmax) : hi);
+            T reach =
+                T(2) * (crit == NeighbourCriterion::symmetric ? std::max(hi, leaf->hmax) : hi);
             if (node_distance2(*leaf, pos, box) >= reach * reach) continue;
             const std::uint32_t b = leaf->begin, n = leaf->end - leaf->begin;
             if (n > kMaxLeaf) {
