@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "exasph/exact/exact_density.hpp"
@@ -21,5 +22,21 @@ struct InitialConditions {
     std::string units = "code units"; // unit system of all fields, written to outputs
     ExactDensity exact;               // the analytic density, when the case has one
 };
+
+// Sets the state of slot s: id, position, velocity, x_{-1} = x - v dt0 (the Press scheme's
+// previous position, SPEC 7), h, m and u; the other state fields start at zero.
+template <class T>
+void set_particle(ParticleSet<T>& ps, std::size_t s, std::uint64_t id, const double (&pos)[3],
+                  const double (&vel)[3], double dt0, double h, double m, double u) {
+    ps.id[s] = id;
+    for (int d = 0; d < 3; ++d) {
+        ps[static_cast<Field>(int(Field::x) + d)][s] = T(pos[d]);
+        ps[static_cast<Field>(int(Field::vx) + d)][s] = T(vel[d]);
+        ps[static_cast<Field>(int(Field::x_m1) + d)][s] = T(pos[d] - vel[d] * dt0);
+    }
+    ps[Field::h][s] = T(h);
+    ps[Field::m][s] = T(m);
+    ps[Field::u][s] = T(u);
+}
 
 } // namespace exasph

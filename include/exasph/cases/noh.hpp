@@ -56,21 +56,8 @@ InitialConditions<T> make_noh(const NohParams& np, const UnitCubePoints& points,
         if (r >= np.radius) continue;
         const std::size_t s = ps.size();
         ps.resize(s + 1);
-        const double vx = r > 0 ? -np.speed * x / r : 0, vy = r > 0 ? -np.speed * y / r : 0,
-                     vz = r > 0 ? -np.speed * z / r : 0;
-        ps.id[s] = idx;
-        ps[Field::x][s] = T(x);
-        ps[Field::y][s] = T(y);
-        ps[Field::z][s] = T(z);
-        ps[Field::vx][s] = T(vx);
-        ps[Field::vy][s] = T(vy);
-        ps[Field::vz][s] = T(vz);
-        ps[Field::x_m1][s] = T(x - vx * np.dt0);
-        ps[Field::y_m1][s] = T(y - vy * np.dt0);
-        ps[Field::z_m1][s] = T(z - vz * np.dt0);
-        ps[Field::h][s] = T(h0);
-        ps[Field::m][s] = T(mass);
-        ps[Field::u][s] = T(np.u0);
+        const double f = r > 0 ? -np.speed / r : 0.0;
+        set_particle(ps, s, idx, {x, y, z}, {f * x, f * y, f * z}, np.dt0, h0, mass, np.u0);
     }
     return ic;
 }

@@ -55,12 +55,7 @@ InitialConditions<T> make_sedov(const SedovParams& sp, const UnitCubePoints& poi
         x -= 0.5;
         y -= 0.5;
         z -= 0.5;
-        ps.id[s] = idx;
-        ps[Field::x][s] = ps[Field::x_m1][s] = T(x);
-        ps[Field::y][s] = ps[Field::y_m1][s] = T(y);
-        ps[Field::z][s] = ps[Field::z_m1][s] = T(z);
-        ps[Field::h][s] = T(h0);
-        ps[Field::m][s] = T(mass);
+        set_particle(ps, s, idx, {x, y, z}, {0.0, 0.0, 0.0}, sp.dt0, h0, mass, 0.0);
         const double w = std::exp(-(x * x + y * y + z * z) / (sp.width * sp.width));
         ps[Field::u][s] = T(w); // weight for now
         weight_sum += mass * w;

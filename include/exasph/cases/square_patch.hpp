@@ -72,21 +72,8 @@ InitialConditions<T> make_square_patch(const SquarePatchParams& sp, int rank = 0
         double x = -half + (double(i) + 0.5) * dx;
         double y = -half + (double(j) + 0.5) * dx;
         double z = -half + (double(k) + 0.5) * dx;
-        double vx = sp.omega * y, vy = -sp.omega * x;
-        ps.id[s] = idx;
-        ps[Field::x][s] = T(x);
-        ps[Field::y][s] = T(y);
-        ps[Field::z][s] = T(z);
-        ps[Field::vx][s] = T(vx);
-        ps[Field::vy][s] = T(vy);
-        ps[Field::vz][s] = T(0);
-        ps[Field::x_m1][s] = T(x - vx * sp.dt0);
-        ps[Field::y_m1][s] = T(y - vy * sp.dt0);
-        ps[Field::z_m1][s] = T(z);
-        ps[Field::h][s] = T(h0);
-        ps[Field::m][s] = T(mass);
-        ps[Field::u][s] = T(0);
-        ps[Field::du_m1][s] = T(0);
+        set_particle(ps, s, idx, {x, y, z}, {sp.omega * y, -sp.omega * x, 0.0}, sp.dt0, h0, mass,
+                     0.0);
         ps[Field::rho0][s] = T(sp.density); // replaced by the measured density at step 0
         ps[Field::p0][s] =
             T(square_patch_pressure((x + half) / sp.length, (y + half) / sp.length, sp));
