@@ -98,9 +98,13 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
            "with a decimal point or exponent, written at the first step at or after each "
            "multiple of T)")
         ->type_name("N|T");
+    std::string snapshot_default;
+    for (const auto& info : exasph::kFieldTable)
+        if (info.roles & exasph::kSnapshot)
+            snapshot_default += (snapshot_default.empty() ? "" : ",") + std::string(info.name);
     app.add_option("-f,--fields", cfg.snapshot_fields,
-                   "Snapshot fields, comma-separated (default: x,y,z,vx,vy,vz,h,m,u,rho,p,c,ax,"
-                   "ay,az,du,nc); x,y,z are always written")
+                   "Snapshot fields, comma-separated (default: " + snapshot_default +
+                       "); x,y,z are always written")
         ->delimiter(',');
     app.add_option("--checkpoint-every", cfg.checkpoint_every,
                    "Write a checkpoint every N steps (also at the end of the run)")
