@@ -136,6 +136,10 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
                  "--alpha-min and --alpha, raised by compression");
     app.add_flag("--volume-elements", cfg.volume_elements,
                  "Generalised volume elements X = (m/rho)^0.7 instead of standard SPH volumes");
+    app.add_option("--conductivity", cfg.conductivity,
+                   "Artificial conductivity coefficient alpha_u (Price 2008); 0 is off")
+        ->check(CLI::Range(0.0, 10.0))
+        ->capture_default_str();
     app.add_option("--alpha-min", cfg.alpha_min, "AV switch: smallest alpha")
         ->check(CLI::Range(0.0, 10.0))
         ->capture_default_str();
@@ -317,9 +321,10 @@ int main(int argc, char** argv) {
         return finish_with_error(e.what(), e.exit_code(), e.all_ranks());
     }
     if (!cfg.restart_file.empty()) {
-        for (const char* opt : {"--init", "-n", "--ng0", "--ngmax", "--kernel-exponent",
-                                "--courant", "--alpha", "--global-bucket", "--leaf-size", "--curve",
-                                "--av-switch", "--alpha-min", "--volume-elements"})
+        for (const char* opt :
+             {"--init", "-n", "--ng0", "--ngmax", "--kernel-exponent", "--courant", "--alpha",
+              "--global-bucket", "--leaf-size", "--curve", "--av-switch", "--alpha-min",
+              "--volume-elements", "--conductivity"})
             if (app.count(opt) > 0)
                 return finish_with_error(std::string(opt) +
                                              " cannot be changed on --restart (the checkpoint "

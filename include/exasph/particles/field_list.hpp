@@ -83,7 +83,7 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::vz,       "vz",       "length/time", kState | kHaloSync | kSnapshot, "velocity z"},
     {Field::h,        "h",        "length",      kState | kHaloSync | kSnapshot, "smoothing length"},
     {Field::m,        "m",        "mass",        kState | kHaloSync | kSnapshot, "mass"},
-    {Field::u,        "u",        "energy/mass", kState | kSnapshot, "specific internal energy"},
+    {Field::u,        "u",        "energy/mass", kState | kHaloSync | kSnapshot, "specific internal energy"},
     {Field::du_m1,    "du_m1",    "energy/mass/time", kState, "du/dt at the previous step"},
     {Field::rho0,     "rho0",     "mass/length^3", kState, "Tait EOS reference density"},
     {Field::p0,       "p0",       "pressure",    kState, "Tait EOS background pressure"},

@@ -22,6 +22,7 @@ struct Config {
     bool av_switch = false;       // evolve alpha per particle (Morris & Monaghan)
     double alpha_min = 0.05;      // AV switch: floor of alpha
     double av_decay = 0.2;        // AV switch: decay rate in sound-crossing times of h
+    double conductivity = 0.0;    // artificial conductivity alpha_u (0: off)
     bool volume_elements = false; // generalised volume elements X = (m/rho)^ve_exponent
     double ve_exponent = 0.7;
     int threads = 0;         // 0: OpenMP default

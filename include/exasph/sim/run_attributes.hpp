@@ -42,6 +42,7 @@ void write_run_attributes(const h5::Group& g, const Config& cfg, const Box<T>& b
     h5::write_attribute(g, "param:av_switch", std::int64_t(cfg.av_switch));
     h5::write_attribute(g, "param:alpha_min", cfg.alpha_min);
     h5::write_attribute(g, "param:volume_elements", std::int64_t(cfg.volume_elements));
+    h5::write_attribute(g, "param:conductivity", cfg.conductivity);
     h5::write_attribute(g, "param:leaf_size", std::int64_t(cfg.bucket_size));
     h5::write_attribute(g, "param:global_bucket", std::int64_t(cfg.global_bucket));
     h5::write_attribute(g, "param:curve", std::string(curve_name(cfg.curve)));
@@ -65,6 +66,7 @@ inline void read_run_parameters(const h5::Group& g, Config& cfg) {
     cfg.av_switch = num("param:av_switch") != 0;
     cfg.alpha_min = num("param:alpha_min");
     cfg.volume_elements = num("param:volume_elements") != 0;
+    cfg.conductivity = num("param:conductivity");
     cfg.bucket_size = int(num("param:leaf_size"));
     cfg.global_bucket = int(num("param:global_bucket"));
     cfg.curve = h5::read_attribute_string(g, "param:curve") == "morton" ? CurveKind::morton

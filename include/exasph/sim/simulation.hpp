@@ -100,7 +100,7 @@ class Simulation {
         compute_iad(ps_, nlists_, box_, kernel_.view());
         domain_.exchange_halos(ps_, kHaloIad);
         timer_.stop(kIad);
-        compute_momentum_energy(ps_, nlists_, box_, kernel_.view());
+        compute_momentum_energy(ps_, nlists_, box_, kernel_.view(), T(cfg_.conductivity));
         timer_.stop(kMomentumEnergy);
         double dt = choose_time_step();
         timer_.stop(kTimeStep);

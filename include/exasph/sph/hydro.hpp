@@ -79,13 +79,13 @@ void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& 
 
 template <class T>
 void compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
-                             const KernelView<T>& k) {
+                             const KernelView<T>& k, T alpha_u = T(0)) {
     auto p = make_view(ps);
     const auto n = static_cast<std::int64_t>(nl.size());
 #pragma omp parallel for schedule(dynamic, kHydroChunk)
     for (std::int64_t i = 0; i < n; ++i) {
-        auto r =
-            momentum_energy_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k);
+        auto r = momentum_energy_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box,
+                                      k, alpha_u);
         p[Field::ax][i] = r.ax;
         p[Field::ay][i] = r.ay;
         p[Field::az][i] = r.az;

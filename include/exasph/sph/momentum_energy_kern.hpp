@@ -43,7 +43,7 @@ EXASPH_HD IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T d
 template <class T>
 EXASPH_HD MomentumEnergyResult<T> momentum_energy_kern(std::uint32_t a, NeighbourSpan nb,
                                                        const ParticleView<T>& p, const Box<T>& box,
-                                                       const KernelView<T>& k) {
+                                                       const KernelView<T>& k, T alpha_u = T(0)) {
     const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
     const T *h = p[Field::h], *m = p[Field::m], *rho = p[Field::rho];
@@ -56,7 +56,8 @@ EXASPH_HD MomentumEnergyResult<T> momentum_energy_kern(std::uint32_t a, Neighbou
     // 1/rho^2 (identical for X = m, where X_a / m_a = 1 and k = rho).
     const T xa_ma = xm[a] / m[a];
     const T pa = pr[a] / (omega[a] * kx[a] * kx[a]) * xa_ma;
-    T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0, divv = 0;
+    T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0, divv = 0, du_cond = 0;
+    const T* u = p[Field::u];
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         const std::uint32_t b = nb.index[n];
         // d = x_b - x_a = -r_ab
@@ -95,8 +96,19 @@ EXASPH_HD MomentumEnergyResult<T> momentum_energy_kern(std::uint32_t a, Neighbou
         du_p += xb * v_dot_a;
         divv -= xb / kx[b] * v_dot_a;
         du_av += mb * pi_ab * (vabx * gx + vaby * gy + vabz * gz);
+        if (alpha_u > T(0)) {
+            // Artificial conductivity (Price 2008): heat flows from hot to cold along the pair,
+            // with signal speed sqrt(|P_a - P_b| / rho_ab) and |grad W| ~ A_bar . d / r, both
+            // symmetric in a and b, so sum_a m_a du_a/dt stays zero.
+            T rho_bar = T(0.5) * (rho_a + rho[b]);
+            T vu = std::sqrt(std::abs(pr[a] - pr[b]) / rho_bar);
+            T fbar = r > T(0)
+                         ? T(0.5) * ((aax + abx) * dx + (aay + aby) * dy + (aaz + abz) * dz) / r
+                         : T(0);
+            du_cond -= mb * alpha_u * vu * (u[a] - u[b]) * fbar / rho_bar;
+        }
     }
-    return {ax, ay, az, pa * du_p + T(0.25) * du_av, vsig_max, divv};
+    return {ax, ay, az, pa * du_p + T(0.25) * du_av + du_cond, vsig_max, divv};
 }
 
 } // namespace exasph
