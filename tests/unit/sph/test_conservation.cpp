@@ -19,7 +19,8 @@ struct Sums {
     double energy_ratio;   // |sum m (v.a + du)| / sum |m v.a|
 };
 
-Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false) {
+Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false,
+                       double conductivity = 0.0) {
     Box<double> box;
     auto ps = testref::periodic_lattice(14, 100, box);
     std::mt19937_64 rng(7);
@@ -52,7 +53,7 @@ Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false) {
     compute_eos(ps, EosParams{}, ps.size());
     compute_iad(ps, nl, box, k.view());
     std::fill(ps[Field::alpha].begin(), ps[Field::alpha].end(), 1.0);
-    compute_momentum_energy(ps, nl, box, k.view());
+    compute_momentum_energy(ps, nl, box, k.view(), conductivity);
 
     double sum_ma[3] = {0, 0, 0}, sum_abs_ma = 0, sum_e = 0, sum_abs_va = 0;
     std::size_t approaching = 0;
@@ -86,6 +87,13 @@ TEST(Conservation, SymmetricNeighboursConserveMomentumAndEnergy) {
 TEST(Conservation, VolumeElementsConserveMomentumAndEnergy) {
     Sums s = conservation_sums(NeighbourCriterion::symmetric, true);
     std::printf("volume elements: momentum %.3e energy %.3e\n", s.momentum_ratio, s.energy_ratio);
+    EXPECT_LT(s.momentum_ratio, 1e-12);
+    EXPECT_LT(s.energy_ratio, 1e-10);
+}
+
+TEST(Conservation, ArtificialConductivityConservesEnergy) {
+    Sums s = conservation_sums(NeighbourCriterion::symmetric, true, 1.0);
+    std::printf("conductivity: momentum %.3e energy %.3e\n", s.momentum_ratio, s.energy_ratio);
     EXPECT_LT(s.momentum_ratio, 1e-12);
     EXPECT_LT(s.energy_ratio, 1e-10);
 }
