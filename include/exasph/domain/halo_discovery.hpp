@@ -100,14 +100,8 @@ class LeafIndex {
     // decide the same way whether they exchange halos.
     static bool within_reach(const T alo[3], const T ahi[3], const T blo[3], const T bhi[3], T h,
                              const Box<T>& box) {
-        T d2 = 0;
-        for (int d = 0; d < 3; ++d) {
-            T dc = box.min_image(T(0.5) * (alo[d] + ahi[d]) - T(0.5) * (blo[d] + bhi[d]), d);
-            T gap = std::abs(dc) - (T(0.5) * (ahi[d] - alo[d]) + T(0.5) * (bhi[d] - blo[d]));
-            if (gap > 0) d2 += gap * gap;
-        }
         T reach = T(2) * h * T(1 + kHaloSlack);
-        return d2 < reach * reach;
+        return box.box_distance2(alo, ahi, blo, bhi) < reach * reach;
     }
 
   private:

@@ -42,31 +42,20 @@ inline bool is_neighbour(T r2, T hi, T hj, NeighbourCriterion crit) {
     return r2 < T(4) * hh * hh;
 }
 
-// Squared minimum-image distance from a point to a node's bounding box, slightly reduced so that
-// pruning is conservative against round-off (a particle on the box face is never pruned).
+// Round-off slack of tree pruning: half-widths grow by this factor, so that a particle on a box
+// face is never pruned.
+inline constexpr double kPruneInflate = 1.000000001;
+
+// Squared minimum-image distance from a point to a node's box (conservative).
 template <class T>
 inline T node_distance2(const OctreeNode<T>& nd, const T p[3], const Box<T>& box) {
-    T d2 = 0;
-    for (int d = 0; d < 3; ++d) {
-        T half = T(0.5) * (nd.hi[d] - nd.lo[d]);
-        T centre = T(0.5) * (nd.hi[d] + nd.lo[d]);
-        T dist = std::abs(box.min_image(p[d] - centre, d)) - half * T(1.000000001);
-        if (dist > 0) d2 += dist * dist;
-    }
-    return d2;
+    return box.box_distance2(nd.lo, nd.hi, p, p, T(kPruneInflate));
 }
 
-// Squared minimum-image distance between two nodes' boxes, slightly reduced (conservative).
+// Squared minimum-image distance between two nodes' boxes (conservative).
 template <class T>
 inline T box_distance2(const OctreeNode<T>& a, const OctreeNode<T>& b, const Box<T>& box) {
-    T d2 = 0;
-    for (int d = 0; d < 3; ++d) {
-        T dc = box.min_image(T(0.5) * (a.lo[d] + a.hi[d]) - T(0.5) * (b.lo[d] + b.hi[d]), d);
-        T gap =
-            std::abs(dc) - T(0.5) * ((a.hi[d] - a.lo[d]) + (b.hi[d] - b.lo[d])) * T(1.000000001);
-        if (gap > 0) d2 += gap * gap;
-    }
-    return d2;
+    return box.box_distance2(a.lo, a.hi, b.lo, b.hi, T(kPruneInflate));
 }
 
 // Neighbours of particle i (self excluded), in tree order. Writes at most `cap` indices to `out`

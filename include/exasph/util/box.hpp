@@ -32,6 +32,21 @@ struct Box {
         return {min_image(d.x, 0), min_image(d.y, 1), min_image(d.z, 2)};
     }
 
+    // Squared minimum-image distance between the boxes [alo, ahi] and [blo, bhi] (a point when
+    // lo == hi). Half-widths are multiplied by `inflate`: slightly above 1 makes the result a
+    // lower bound despite round-off (tree pruning). Symmetric in a and b.
+    EXASPH_HD T box_distance2(const T alo[3], const T ahi[3], const T blo[3], const T bhi[3],
+                              T inflate = T(1)) const {
+        T d2 = 0;
+        for (int d = 0; d < 3; ++d) {
+            T dc = min_image(T(0.5) * (alo[d] + ahi[d]) - T(0.5) * (blo[d] + bhi[d]), d);
+            T gap =
+                (dc < T(0) ? -dc : dc) - T(0.5) * ((ahi[d] - alo[d]) + (bhi[d] - blo[d])) * inflate;
+            if (gap > T(0)) d2 += gap * gap;
+        }
+        return d2;
+    }
+
     // Wraps a coordinate into [lo, hi) on a periodic axis; returns the shift applied.
     EXASPH_HD T wrap_shift(T x, int axis) const {
         if (!periodic[axis]) return T(0);
