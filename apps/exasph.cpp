@@ -143,14 +143,26 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
     app.add_option("--alpha-min", cfg.alpha_min, "AV switch: smallest alpha")
         ->check(CLI::Range(0.0, 10.0))
         ->capture_default_str();
+    app.add_option("--G", cfg.G,
+                   "Gravitational constant: self-gravity on the tree (SPEC 8) for any case in an "
+                   "open box; 0 turns it off (default: the case's, 1 for evrard, else off)")
+        ->check(CLI::Range(0.0, 1e300));
+    app.add_option("--theta", cfg.theta, "Gravity: Barnes-Hut opening angle")
+        ->check(CLI::Range(0.05, 0.95))
+        ->capture_default_str();
+    app.add_option("--accel-eps", cfg.accel_eps,
+                   "Gravity: time step at most sqrt(eps h / |a|) per particle")
+        ->check(CLI::Range(1e-6, 10.0))
+        ->capture_default_str();
     app.add_option("--threads", cfg.threads, "OpenMP threads (default: OMP_NUM_THREADS or all)")
         ->check(CLI::Range(1, 4096));
-    app.add_option("--param", cfg.case_params,
-                   "Case parameter KEY=VALUE (repeatable): sedov gamma, energy, width, u0, dt0, "
-                   "t_end; noh gamma, radius, speed, u0, dt0, t_end; square-patch omega, "
-                   "sound_speed, dt0, t_end");
+    app.add_option(
+        "--param", cfg.case_params,
+        "Case parameter KEY=VALUE (repeatable): sedov gamma, energy, width, u0, dt0, "
+        "t_end; noh gamma, radius, speed, u0, dt0, t_end; evrard gamma, mass, radius, u0 "
+        "(in G M / R), dt0, t_end; square-patch omega, sound_speed, dt0, t_end");
     app.add_flag("--lattice", cfg.lattice,
-                 "sedov, noh: start from a regular lattice instead of a relaxed glass");
+                 "sedov, noh, evrard: start from a regular lattice instead of a relaxed glass");
     app.add_option("--global-bucket", cfg.global_bucket,
                    "Global tree leaf size: the unit of MPI load balance (particles)")
         ->check(CLI::Range(1, 1 << 20))

@@ -17,14 +17,16 @@ namespace exasph::testref {
 struct ParticleState {
     std::uint64_t id;
     double rho, vx, vy, vz, u;
+    double ax, ay, az, phi; // of the last step (hydro + gravity), potential 0 without gravity
 };
 
 inline std::vector<ParticleState> owned_state(const Simulation<double>& sim) {
     const auto& ps = sim.particles();
     std::vector<ParticleState> out(sim.n_owned());
     for (std::size_t i = 0; i < out.size(); ++i)
-        out[i] = {ps.id[i],         ps[Field::rho][i], ps[Field::vx][i],
-                  ps[Field::vy][i], ps[Field::vz][i],  ps[Field::u][i]};
+        out[i] = {ps.id[i],         ps[Field::rho][i], ps[Field::vx][i], ps[Field::vy][i],
+                  ps[Field::vz][i], ps[Field::u][i],   ps[Field::ax][i], ps[Field::ay][i],
+                  ps[Field::az][i], ps[Field::phi][i]};
     return out;
 }
 
@@ -54,15 +56,17 @@ inline OneRankReference one_rank_reference(const Config& cfg, int steps, int thr
 // Worst per-particle differences of a distributed state against the reference (rank 0 only):
 // rho relative to itself, v relative to the largest speed, u relative to the largest u.
 struct Differences {
-    double rho = 0, v = 0, u = 0;
+    double rho = 0, v = 0, u = 0, a = 0, phi = 0; // a relative to the largest |a| component
 };
 
 inline Differences compare_to_reference(const std::vector<ParticleState>& all,
                                         const OneRankReference& ref) {
-    double vmax = 0, umax = 0;
+    double vmax = 0, umax = 0, amax = 0, phimax = 0;
     for (const auto& [id, st] : ref.state) {
         vmax = std::max({vmax, std::abs(st.vx), std::abs(st.vy), std::abs(st.vz)});
         umax = std::max(umax, std::abs(st.u));
+        amax = std::max({amax, std::abs(st.ax), std::abs(st.ay), std::abs(st.az)});
+        phimax = std::max(phimax, std::abs(st.phi));
     }
     Differences d;
     for (const auto& st : all) {
@@ -71,6 +75,9 @@ inline Differences compare_to_reference(const std::vector<ParticleState>& all,
         d.v = std::max({d.v, std::abs(st.vx - r.vx) / vmax, std::abs(st.vy - r.vy) / vmax,
                         std::abs(st.vz - r.vz) / vmax});
         d.u = std::max(d.u, std::abs(st.u - r.u) / umax);
+        d.a = std::max({d.a, std::abs(st.ax - r.ax) / amax, std::abs(st.ay - r.ay) / amax,
+                        std::abs(st.az - r.az) / amax});
+        if (phimax > 0) d.phi = std::max(d.phi, std::abs(st.phi - r.phi) / phimax);
     }
     return d;
 }

@@ -21,6 +21,7 @@ struct InitialConditions {
     double t_end = 0.0;               // default end time of the case
     std::string units = "code units"; // unit system of all fields, written to outputs
     ExactDensity exact;               // the analytic density, when the case has one
+    double G = 0.0;                   // gravitational constant; 0: no self-gravity
 };
 
 // Sets the state of slot s: id, position, velocity, x_{-1} = x - v dt0 (the Press scheme's

@@ -96,6 +96,7 @@ class Domain {
     MPI_Comm comm() const { return coll_.comm(); }
     int rank() const { return coll_.rank(); }
     int nranks() const { return coll_.size(); }
+    CurveKind curve() const { return curve_; }
 
     // Local min/max of the owned positions as six SumMax elements (max of hi, max of -lo).
     static void local_extent(const ParticleSet<T>& ps, std::size_t n, SumMax* out) {

@@ -44,6 +44,7 @@ enum class Field : std::uint8_t {
     divv,     // velocity divergence (IAD), drives the AV switch
     xm,       // volume-element weight X (= m for standard SPH; (m/rho)^p with volume elements)
     kx,       // volume-element normalisation k = sum_b X_b W_ab
+    phi,      // gravitational potential (SPEC 8; 0 without gravity)
     count_    // number of fields (not a field)
 };
 
@@ -107,6 +108,7 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::divv,     "divv",     "1/time",      kDerived, "velocity divergence"},
     {Field::xm,       "xm",       "volume^p",    kState | kHaloSync, "volume-element weight X"},
     {Field::kx,       "kx",       "volume^(p-1)", kDerived | kHaloDensity, "volume-element normalisation k"},
+    {Field::phi,      "phi",      "energy/mass", kDerived | kSnapshot, "gravitational potential"},
 }};
 // clang-format on
 

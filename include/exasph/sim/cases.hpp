@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "exasph/cases/evrard.hpp"
 #include "exasph/cases/file_case.hpp"
 #include "exasph/cases/noh.hpp"
 #include "exasph/cases/sedov.hpp"
@@ -17,7 +18,7 @@ namespace exasph {
 
 // Names accepted by --init.
 inline const std::vector<std::string>& case_names() {
-    static const std::vector<std::string> names{"square-patch", "sedov", "noh"};
+    static const std::vector<std::string> names{"square-patch", "sedov", "noh", "evrard"};
     return names;
 }
 
@@ -95,6 +96,19 @@ InitialConditions<T> make_case(const Config& cfg, MPI_Comm comm = MPI_COMM_WORLD
                                 {"dt0", &np.dt0},
                                 {"t_end", &np.t_end}});
         return make_noh<T>(np, case_points(cfg, comm, log), rank, nranks);
+    }
+    if (cfg.init == "evrard") {
+        EvrardParams ep;
+        ep.side = cfg.side;
+        ep.ng0 = cfg.ng0;
+        apply_case_params(cfg, {{"gamma", &ep.gamma},
+                                {"mass", &ep.mass},
+                                {"radius", &ep.radius},
+                                {"u0", &ep.u0},
+                                {"dt0", &ep.dt0},
+                                {"t_end", &ep.t_end}});
+        if (cfg.G >= 0) ep.G = cfg.G;
+        return make_evrard<T>(ep, case_points(cfg, comm, log), rank, nranks, comm);
     }
     if (names_a_file(cfg.init)) {
         apply_case_params(cfg, {});

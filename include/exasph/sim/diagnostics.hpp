@@ -26,9 +26,9 @@ struct Diagnostics {
     double l1_rho = -1; // mean |rho - rho_exact| (when the case has an exact solution, else -1)
 };
 
-// Layout of the diagnostics reduction: SumMax elements 0..10 below, then six for the extent of
+// Layout of the diagnostics reduction: SumMax elements 0..12 below, then six for the extent of
 // the positions (which gives next step's box without another collective).
-inline constexpr std::size_t kDiagElements = 12;
+inline constexpr std::size_t kDiagElements = 13;
 inline constexpr std::size_t kDiagWithExtent = kDiagElements + 6;
 
 // This rank's contribution over its owned particles [0, n_owned); sums are independent of the
@@ -41,7 +41,8 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
     const T *vx = ps.data(Field::vx), *vy = ps.data(Field::vy), *vz = ps.data(Field::vz);
     const T *m = ps.data(Field::m), *u = ps.data(Field::u), *nc = ps.data(Field::nc);
-    auto s = block_sum<9>(n_owned, [&](std::size_t i) -> std::array<double, 9> {
+    const T* phi = ps.data(Field::phi);
+    auto s = block_sum<10>(n_owned, [&](std::size_t i) -> std::array<double, 10> {
         double mi = m[i];
         double v2 = double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i];
         return {0.5 * mi * v2,
@@ -52,7 +53,8 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
                 mi * (double(y[i]) * vz[i] - double(z[i]) * vy[i]),
                 mi * (double(z[i]) * vx[i] - double(x[i]) * vz[i]),
                 mi * (double(x[i]) * vy[i] - double(y[i]) * vx[i]),
-                double(nc[i])};
+                double(nc[i]),
+                0.5 * mi * phi[i]}; // each pair counted from both sides (SPEC 8)
     });
     double nc_lo = std::numeric_limits<double>::infinity(), nc_hi = -nc_lo;
     for (std::size_t i = 0; i < n_owned; ++i) {
@@ -76,12 +78,14 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
         }
     }
     out[11] = {l1, rho_max};
+    out[12] = {s[9], -std::numeric_limits<double>::infinity()};
 }
 
 inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
     Diagnostics d;
     d.ekin = e[0].sum;
     d.eint = e[1].sum;
+    d.epot = e[12].sum;
     d.etot = d.ekin + d.eint + d.epot;
     d.momentum = {e[2].sum, e[3].sum, e[4].sum};
     d.angular_momentum = {e[5].sum, e[6].sum, e[7].sum};

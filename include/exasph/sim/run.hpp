@@ -168,6 +168,7 @@ inline int run(Config cfg, std::ostream& out) {
     double case_t_end = 0;
     auto sim_ptr = make_simulation(cfg, units, case_t_end);
     Simulation<double>& sim = *sim_ptr;
+    cfg.G = sim.gravitational_constant(); // outputs record the G the run uses
     const double t_end = cfg.t_end > 0 ? cfg.t_end : (cfg.steps < 0 ? case_t_end : -1.0);
     if (t_end <= 0 && cfg.steps < 0)
         throw input_error("no end: give -s STEPS or --t-end T (the initial conditions set none)",
@@ -178,10 +179,12 @@ inline int run(Config cfg, std::ostream& out) {
     if (root) {
         out << "exasph " << kVersion << " (" << kBuildInfo << ")\n";
         out << strprintf("%s %s, %llu particles, %d ranks x %d threads, ng0 %g, ngmax %d, "
-                         "sinc n %g, courant %g, alpha %g, global bucket %d\n",
+                         "sinc n %g, courant %g, alpha %g, global bucket %d%s\n",
                          cfg.restart_file.empty() ? "case" : "restart of", cfg.init.c_str(),
                          (unsigned long long)n, nranks, thread_count(), cfg.ng0, cfg.ngmax,
-                         cfg.kernel_exponent, cfg.courant, cfg.alpha, cfg.global_bucket);
+                         cfg.kernel_exponent, cfg.courant, cfg.alpha, cfg.global_bucket,
+                         cfg.G > 0 ? strprintf(", gravity G %g theta %g", cfg.G, cfg.theta).c_str()
+                                   : "");
         if (!cfg.restart_file.empty())
             out << strprintf("continuing from %s at step %lld, t = %.6e\n",
                              cfg.restart_file.c_str(), (long long)sim.step_count(), sim.time());

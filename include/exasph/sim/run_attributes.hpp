@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ void write_run_attributes(const h5::Group& g, const Config& cfg, const Box<T>& b
     h5::write_attribute(g, "param:alpha_min", cfg.alpha_min);
     h5::write_attribute(g, "param:volume_elements", std::int64_t(cfg.volume_elements));
     h5::write_attribute(g, "param:conductivity", cfg.conductivity);
+    h5::write_attribute(g, "param:G", std::max(cfg.G, 0.0));
+    h5::write_attribute(g, "param:theta", cfg.theta);
+    h5::write_attribute(g, "param:accel_eps", cfg.accel_eps);
     h5::write_attribute(g, "param:leaf_size", std::int64_t(cfg.bucket_size));
     h5::write_attribute(g, "param:global_bucket", std::int64_t(cfg.global_bucket));
     h5::write_attribute(g, "param:curve", std::string(curve_name(cfg.curve)));
@@ -67,6 +71,10 @@ inline void read_run_parameters(const h5::Group& g, Config& cfg) {
     cfg.alpha_min = num("param:alpha_min");
     cfg.volume_elements = num("param:volume_elements") != 0;
     cfg.conductivity = num("param:conductivity");
+    // Gravity parameters came with issue 6: older files ran without gravity.
+    cfg.G = h5::has_attribute(g, "param:G") ? num("param:G") : 0.0;
+    if (h5::has_attribute(g, "param:theta")) cfg.theta = num("param:theta");
+    if (h5::has_attribute(g, "param:accel_eps")) cfg.accel_eps = num("param:accel_eps");
     cfg.bucket_size = int(num("param:leaf_size"));
     cfg.global_bucket = int(num("param:global_bucket"));
     cfg.curve = h5::read_attribute_string(g, "param:curve") == "morton" ? CurveKind::morton

@@ -3,11 +3,13 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string_view>
 #include <vector>
 
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/domain/domain.hpp"
+#include "exasph/gravity/gravity_solver.hpp"
 #include "exasph/sim/config.hpp"
 #include "exasph/sim/diagnostics.hpp"
 #include "exasph/sph/av_switch.hpp"
@@ -30,6 +32,7 @@ enum Phase : std::size_t {
     kEos,
     kIad,
     kMomentumEnergy,
+    kGravity,
     kTimeStep,
     kUpdate,
     kSmoothingLength,
@@ -37,12 +40,13 @@ enum Phase : std::size_t {
     kNumPhases
 };
 inline constexpr std::array<std::string_view, kNumPhases> kPhaseNames{
-    "sync",     "neighbours", "density",  "eos",        "iad", "momentum_energy",
-    "timestep", "update",     "h_update", "diagnostics"};
+    "sync",    "neighbours", "density", "eos",      "iad",        "momentum_energy",
+    "gravity", "timestep",   "update",  "h_update", "diagnostics"};
 
 // One SPH simulation: the step pipeline of DESIGN.md, each phase timed. Runs on any number of
 // MPI ranks of `comm` (one rank included); results do not depend on ranks or threads beyond
-// round-off. Collectives per step: global tree counts (sync), minimum dt, diagnostics.
+// round-off. Collectives per step: global tree counts (sync), minimum dt, diagnostics; with
+// self-gravity one more (the leaf multipoles).
 // Where a checkpoint left a run: with these and the particles' state fields a run continues
 // exactly (bitwise on the same rank count).
 struct RestartState {
@@ -71,6 +75,14 @@ class Simulation {
                   cfg.curve),
           dt_m1_(ic.dt0), dt0_(ic.dt0), exact_(std::move(ic.exact)) {
         ps_.validate();
+        const double G = cfg.G >= 0 ? cfg.G : ic.G;
+        if (G > 0) {
+            if (box_.periodic[0] || box_.periodic[1] || box_.periodic[2])
+                throw input_error("self-gravity needs an open box: periodic gravity (Ewald "
+                                  "summation) is not implemented; run with --G 0",
+                                  true);
+            gravity_.emplace(kernel_, G, cfg.theta, std::uint32_t(cfg.bucket_size));
+        }
         if (restart) {
             time_ = restart->time;
             step_ = restart->step;
@@ -82,6 +94,7 @@ class Simulation {
             domain_.init(ps_, box_);
         }
         diagnose(0.0);
+        if (gravity_) add_initial_potential_energy(comm);
     }
 
     void step() {
@@ -102,6 +115,10 @@ class Simulation {
         timer_.stop(kIad);
         compute_momentum_energy(ps_, nlists_, box_, kernel_.view(), T(cfg_.conductivity));
         timer_.stop(kMomentumEnergy);
+        if (gravity_)
+            gravity_->compute(ps_, n_owned(), domain_.assignment(), box_, domain_.curve(),
+                              domain_.collectives());
+        timer_.stop(kGravity);
         double dt = choose_time_step();
         timer_.stop(kTimeStep);
         update_state(dt);
@@ -127,6 +144,8 @@ class Simulation {
         return {time_, step_, dt_m1_, domain_.global_tree().keys()};
     }
     const EosParams& eos() const { return eos_; }
+    // Gravitational constant of the run (0: no self-gravity).
+    double gravitational_constant() const { return gravity_ ? gravity_->G() : 0.0; }
     double dt0() const { return dt0_; }
 
     // Glass relaxation (damped SPH): after a step, stop every particle where it is and restore
@@ -197,16 +216,24 @@ class Simulation {
         std::copy_n(ps_[Field::rho].begin(), n_owned(), ps_[Field::rho0].begin());
     }
 
-    // SPEC 7: Courant limit over all particles, at most 1.1 x the previous step; the first step
-    // is the case's dt0 (or less, if the Courant limit demands it). One collective (min).
+    // SPEC 7: Courant limit over all particles (with gravity also the acceleration limit), at
+    // most 1.1 x the previous step; the first step is the case's dt0 (or less, if the limits
+    // demand it). One collective (min).
     double choose_time_step() {
         const T *h = ps_.data(Field::h), *vs = ps_.data(Field::vsig_max), *c = ps_.data(Field::c);
+        const T *ax = ps_.data(Field::ax), *ay = ps_.data(Field::ay), *az = ps_.data(Field::az);
         const auto n = static_cast<std::int64_t>(n_owned());
         const T courant = T(cfg_.courant);
+        const double eps = gravity_ ? cfg_.accel_eps : 0.0;
         double dt_min = std::numeric_limits<double>::max();
 #pragma omp parallel for schedule(static) reduction(min : dt_min)
-        for (std::int64_t i = 0; i < n; ++i)
+        for (std::int64_t i = 0; i < n; ++i) {
             dt_min = std::min(dt_min, double(courant_time_step(h[i], vs[i], c[i], courant)));
+            if (eps > 0)
+                dt_min =
+                    std::min(dt_min, acceleration_time_step(double(h[i]), double(ax[i]),
+                                                            double(ay[i]), double(az[i]), eps));
+        }
         dt_min = domain_.collectives().allreduce_min(dt_min);
         double dt = step_ == 0 ? std::min(dt0_, dt_min) : limit_time_step(dt_min, dt_m1_);
         if (t_end_ > 0 && time_ + dt > t_end_) dt = std::max(t_end_ - time_, 0.0);
@@ -259,6 +286,27 @@ class Simulation {
         for (std::int64_t i = 0; i < n; ++i) xm[i] = T(std::pow(double(m[i] / rho[i]), pw));
     }
 
+    // The first diagnostics row needs the potential energy of the initial positions, before any
+    // step has computed forces: a throw-away domain and gravity pass over a copy of the particles
+    // (start-up only; the run's own domain is left as it is, so restarts stay exact).
+    void add_initial_potential_energy(MPI_Comm comm) {
+        ParticleSet<T> copy = ps_;
+        copy.resize(n_owned());
+        Box<T> box = box_;
+        Domain<T> dom(comm, std::uint32_t(cfg_.global_bucket), std::uint32_t(cfg_.bucket_size),
+                      cfg_.curve);
+        dom.init(copy, box);
+        dom.sync(copy, box);
+        gravity_->compute(copy, dom.n_owned(), dom.assignment(), box, dom.curve(),
+                          dom.collectives());
+        double e = 0;
+        for (std::size_t i = 0; i < dom.n_owned(); ++i)
+            e += 0.5 * double(copy[Field::m][i]) * copy[Field::phi][i];
+        MPI_Allreduce(MPI_IN_PLACE, &e, 1, MPI_DOUBLE, MPI_SUM, comm);
+        diag_.epot = e;
+        diag_.etot = diag_.ekin + diag_.eint + diag_.epot;
+    }
+
     void update_smoothing_lengths() {
         T* h = ps_.data(Field::h);
         const T* nc = ps_.data(Field::nc);
@@ -305,6 +353,7 @@ class Simulation {
     std::uint32_t max_list_ = 0;
     std::array<double, kNumControlFlags> local_flags_{}, flags_{};
     ExactDensity exact_;
+    std::optional<GravitySolver<T>> gravity_;
 };
 
 } // namespace exasph

@@ -29,15 +29,16 @@ struct OctreeNode {
 template <class T>
 class Octree {
   public:
-    // Builds over the particles [offset, offset + n), whose sorted keys are keys[0, n).
+    // Builds over the particles [offset, offset + n), whose sorted keys are keys[0, n). With
+    // `start_level` > 0 all keys must lie in one cell of that level, which becomes the root.
     void build(const std::uint64_t* keys, std::uint32_t n, std::uint32_t bucket_size,
-               std::uint32_t offset = 0) {
+               std::uint32_t offset = 0, int start_level = 0) {
         if (bucket_size == 0) throw Error("octree: bucket size must be positive");
         nodes_.clear();
         leaves_.clear();
         if (n == 0) return;
         nodes_.push_back({0, n, -1, 0, {}, {}, 0});
-        split(0, keys, 0, bucket_size);
+        split(0, keys, start_level, bucket_size);
         for (auto& nd : nodes_) {
             nd.begin += offset;
             nd.end += offset;

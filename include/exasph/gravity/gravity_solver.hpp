@@ -1,0 +1,274 @@
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <mpi.h>
+
+#include "exasph/domain/collectives.hpp"
+#include "exasph/domain/global_tree.hpp"
+#include "exasph/gravity/gravity_tree.hpp"
+#include "exasph/particles/particle_set.hpp"
+#include "exasph/sfc/keys.hpp"
+#include "exasph/util/error.hpp"
+
+namespace exasph {
+
+// Distributed self-gravity (SPEC 8) on the domain's decomposition:
+//  1. each rank summarises the global leaves it owns; one collective (sum/max) gives every rank
+//     every leaf's multipole, box and hmax, hence the same top tree;
+//  2. each rank decides from the top tree alone which remote leaves its walks may open, and each
+//     owner decides the same for every other rank, so both sides know what moves without
+//     exchanging counts; the particles of those leaves move point to point;
+//  3. every leaf whose particles are here gets its subtree and each owned particle walks the tree.
+// The nodes a walk sees are the same on any number of ranks, so the result does not depend on the
+// rank count (up to round-off in the order of the per-leaf sums, which is the same too).
+template <class T>
+class GravitySolver {
+  public:
+    GravitySolver(const KernelTable<T>& kernel, double G, double theta, std::uint32_t bucket)
+        : soft_(kernel), G_(G), theta_(theta), bucket_(bucket) {
+        if (!(theta > 0 && theta < 1))
+            throw input_error("--theta must be in (0, 1), got " + std::to_string(theta), true);
+    }
+
+    double G() const { return G_; }
+    double theta() const { return theta_; }
+    // Particles received from other ranks in the last call.
+    std::size_t remote_sources() const { return remote_; }
+    // Mean interactions per owned particle in the last call (multipole and particle-particle).
+    double multipoles_per_particle() const { return multipoles_per_particle_; }
+    double pairs_per_particle() const { return pairs_per_particle_; }
+    const SofteningTable<T>& softening() const { return soft_; }
+
+    // Adds G times the gravitational acceleration to ax, ay, az of the owned particles [0, n) and
+    // sets their potential phi. The particles must be in the order of the domain's last sync
+    // (SFC order, each rank owning the leaves of `asg`); `box` is the box of that sync.
+    void compute(ParticleSet<T>& ps, std::size_t n, const Assignment& asg, const Box<T>& box,
+                 CurveKind curve, Collectives& coll) {
+        const int me = coll.rank();
+        const auto nl = std::uint32_t(asg.leaf_keys.size() - 1);
+        const std::uint32_t f0 = asg.first_leaf[me], f1 = asg.first_leaf[me + 1];
+        auto own = owned_leaf_ranges(ps, n, asg, box, curve, f0, f1);
+        auto summaries = reduce_summaries(ps, asg, own, f0, f1, coll);
+        tree_.build_top(asg.leaf_keys, summaries, theta_);
+        auto need = leaves_needed_here(summaries, asg, me, nl);
+        auto received = exchange_sources(ps, asg, summaries, need, own, coll);
+        const std::size_t self_offset =
+            assemble_sources(ps, asg, need, own, received, box, curve, me);
+        tree_.add_subtrees(src_, src_begin_, src_end_, bucket_);
+        walk(ps, n, self_offset);
+    }
+
+  private:
+    static constexpr int kTag = 7201;
+    // Per leaf: sums carry mass, com[3], q[6], s[10], d2; maxima hi[3], -lo[3], hmax.
+    static constexpr int kSums = 21;
+
+    struct Range {
+        std::uint32_t begin = 0, end = 0;
+    };
+
+    // Owned particles of each of this rank's leaves [f0, f1) (indexed by g - f0).
+    std::vector<Range> owned_leaf_ranges(const ParticleSet<T>& ps, std::size_t n,
+                                         const Assignment& asg, const Box<T>& box, CurveKind curve,
+                                         std::uint32_t f0, std::uint32_t f1) {
+        keys_.resize(n);
+        const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
+        for (std::size_t i = 0; i < n; ++i) keys_[i] = sfc_key(x[i], y[i], z[i], box, curve);
+        std::vector<Range> own(f1 - f0);
+        for (std::uint32_t g = f0; g < f1; ++g) {
+            auto b = std::lower_bound(keys_.begin(), keys_.end(), asg.leaf_keys[g]);
+            auto e = std::lower_bound(b, keys_.end(), asg.leaf_keys[g + 1]);
+            own[g - f0] = {std::uint32_t(b - keys_.begin()), std::uint32_t(e - keys_.begin())};
+        }
+        const bool tiles = own.empty() ? n == 0 : own.front().begin == 0 && own.back().end == n;
+        if (!tiles) throw Error("gravity: owned particles are not the ones of the domain's leaves");
+        return own;
+    }
+
+    std::vector<LeafSummary<T>> reduce_summaries(const ParticleSet<T>& ps, const Assignment& asg,
+                                                 const std::vector<Range>& own, std::uint32_t f0,
+                                                 std::uint32_t f1, Collectives& coll) {
+        const std::size_t nl = asg.leaf_keys.size() - 1;
+        std::vector<SumMax> buf(nl * kSums);
+        for (std::uint32_t g = f0; g < f1; ++g) {
+            const Range r = own[g - f0];
+            if (r.end == r.begin) continue;
+            auto s = summarise_particles(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
+                                         ps.data(Field::m), ps.data(Field::h), r.begin, r.end);
+            SumMax* b = &buf[g * kSums];
+            b[0].sum = s.mp.mass;
+            for (int d = 0; d < 3; ++d) {
+                b[1 + d].sum = s.mp.com[d];
+                b[d].max = s.hi[d];
+                b[3 + d].max = -double(s.lo[d]);
+            }
+            for (int k = 0; k < 6; ++k) b[4 + k].sum = s.mp.q[k];
+            for (int k = 0; k < 10; ++k) b[10 + k].sum = s.mp.s[k];
+            b[20].sum = s.mp.d2;
+            b[6].max = s.hmax;
+        }
+        coll.allreduce_sum_max(buf);
+        std::vector<LeafSummary<T>> out(nl);
+        for (std::size_t g = 0; g < nl; ++g) {
+            const SumMax* b = &buf[g * kSums];
+            if (!(b[0].sum > 0)) continue;
+            auto& s = out[g];
+            s.mp.mass = b[0].sum;
+            for (int d = 0; d < 3; ++d) {
+                s.mp.com[d] = b[1 + d].sum;
+                s.hi[d] = T(b[d].max);
+                s.lo[d] = T(-b[3 + d].max);
+            }
+            for (int k = 0; k < 6; ++k) s.mp.q[k] = b[4 + k].sum;
+            for (int k = 0; k < 10; ++k) s.mp.s[k] = b[10 + k].sum;
+            s.mp.d2 = b[20].sum;
+            s.hmax = T(b[6].max);
+        }
+        return out;
+    }
+
+    // Remote leaves that walks of this rank's particles may open.
+    std::vector<char> leaves_needed_here(const std::vector<LeafSummary<T>>& sm,
+                                         const Assignment& asg, int me, std::uint32_t nl) const {
+        std::vector<char> need(nl, 0);
+        const std::uint32_t f0 = asg.first_leaf[me], f1 = asg.first_leaf[me + 1];
+        for (std::uint32_t p = f0; p < f1; ++p) {
+            if (!(sm[p].mp.mass > 0)) continue;
+            auto mark = [&](std::uint32_t g) { need[g] = 1; };
+            tree_.open_top_leaves(sm[p].lo, sm[p].hi, sm[p].hmax, 0, f0, mark);
+            tree_.open_top_leaves(sm[p].lo, sm[p].hi, sm[p].hmax, f1, nl, mark);
+        }
+        return need;
+    }
+
+    // Sends the particles of this rank's leaves that other ranks' walks may open (decided here by
+    // the same rule the receivers apply) and receives the ones marked in `need`.
+    std::vector<std::vector<double>>
+    exchange_sources(const ParticleSet<T>& ps, const Assignment& asg,
+                     const std::vector<LeafSummary<T>>& sm, const std::vector<char>& need,
+                     const std::vector<Range>& own, Collectives& coll) {
+        const int me = coll.rank(), np = coll.size();
+        const std::uint32_t f0 = asg.first_leaf[me], f1 = asg.first_leaf[me + 1];
+        std::vector<std::vector<double>> recv(np), send(np);
+        std::vector<MPI_Request> reqs;
+        remote_ = 0;
+        for (int s = 0; s < np; ++s) {
+            if (s == me) continue;
+            std::uint64_t count = 0;
+            for (std::uint32_t g = asg.first_leaf[s]; g < asg.first_leaf[s + 1]; ++g)
+                if (need[g]) count += asg.leaf_count[g];
+            if (count == 0) continue;
+            remote_ += count;
+            recv[s].resize(count * 5);
+            reqs.emplace_back();
+            MPI_Irecv(recv[s].data(), int(recv[s].size()), MPI_DOUBLE, s, kTag, coll.comm(),
+                      &reqs.back());
+        }
+        std::vector<char> send_leaf(f1 - f0);
+        const T* f[5] = {ps.data(Field::x), ps.data(Field::y), ps.data(Field::z), ps.data(Field::m),
+                         ps.data(Field::h)};
+        for (int r = 0; r < np; ++r) {
+            if (r == me) continue;
+            std::fill(send_leaf.begin(), send_leaf.end(), 0);
+            for (std::uint32_t p = asg.first_leaf[r]; p < asg.first_leaf[r + 1]; ++p)
+                if (sm[p].mp.mass > 0)
+                    tree_.open_top_leaves(sm[p].lo, sm[p].hi, sm[p].hmax, f0, f1,
+                                          [&](std::uint32_t g) { send_leaf[g - f0] = 1; });
+            for (std::uint32_t g = f0; g < f1; ++g) {
+                if (!send_leaf[g - f0]) continue;
+                for (std::uint32_t i = own[g - f0].begin; i < own[g - f0].end; ++i)
+                    for (int k = 0; k < 5; ++k) send[r].push_back(double(f[k][i]));
+            }
+            if (send[r].empty()) continue;
+            reqs.emplace_back();
+            MPI_Isend(send[r].data(), int(send[r].size()), MPI_DOUBLE, r, kTag, coll.comm(),
+                      &reqs.back());
+        }
+        MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
+        return recv;
+    }
+
+    // Sources in global leaf order: owned leaves from the particle set, needed remote leaves from
+    // the received buffers. Returns the source index of owned particle 0.
+    std::size_t assemble_sources(const ParticleSet<T>& ps, const Assignment& asg,
+                                 const std::vector<char>& need, const std::vector<Range>& own,
+                                 const std::vector<std::vector<double>>& received,
+                                 const Box<T>& box, CurveKind curve, int me) {
+        const auto nl = std::uint32_t(asg.leaf_keys.size() - 1);
+        const int np = int(asg.first_leaf.size()) - 1;
+        src_begin_.assign(nl, 0);
+        src_end_.assign(nl, 0);
+        std::vector<std::size_t> cursor(np, 0);
+        std::size_t total = 0;
+        for (std::uint32_t g = 0; g < nl; ++g)
+            if (asg.owner[g] == me || need[g]) total += asg.leaf_count[g];
+        src_.resize(total);
+        T* dst[5] = {src_.x.data(), src_.y.data(), src_.z.data(), src_.m.data(), src_.h.data()};
+        const T* f[5] = {ps.data(Field::x), ps.data(Field::y), ps.data(Field::z), ps.data(Field::m),
+                         ps.data(Field::h)};
+        std::size_t pos = 0, self_offset = 0;
+        for (std::uint32_t g = 0; g < nl; ++g) {
+            const int o = asg.owner[g];
+            src_begin_[g] = std::uint32_t(pos);
+            if (o == me) {
+                if (g == asg.first_leaf[me]) self_offset = pos;
+                for (std::uint32_t i = own[g - asg.first_leaf[me]].begin;
+                     i < own[g - asg.first_leaf[me]].end; ++i, ++pos)
+                    for (int k = 0; k < 5; ++k) dst[k][pos] = f[k][i];
+            } else if (need[g]) {
+                const double* b = received[o].data();
+                for (std::uint64_t c = 0; c < asg.leaf_count[g]; ++c, ++pos, cursor[o] += 5)
+                    for (int k = 0; k < 5; ++k) dst[k][pos] = T(b[cursor[o] + k]);
+            }
+            src_end_[g] = std::uint32_t(pos);
+        }
+        for (std::size_t i = 0; i < total; ++i)
+            src_.keys[i] = sfc_key(src_.x[i], src_.y[i], src_.z[i], box, curve);
+        return self_offset;
+    }
+
+    void walk(ParticleSet<T>& ps, std::size_t n, std::size_t self_offset) {
+        const auto tv = tree_.view(src_);
+        const auto soft = soft_.view();
+        T *ax = ps.data(Field::ax), *ay = ps.data(Field::ay), *az = ps.data(Field::az);
+        T* phi = ps.data(Field::phi);
+        const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z),
+                *h = ps.data(Field::h);
+        const double G = G_;
+        int missing = 0;
+        double multipoles = 0, pairs = 0;
+        const auto nn = std::int64_t(n);
+#pragma omp parallel for schedule(dynamic, 64) reduction(max : missing) \
+    reduction(+ : multipoles, pairs)
+        for (std::int64_t i = 0; i < nn; ++i) {
+            auto r = gravity_kern(double(x[i]), double(y[i]), double(z[i]), double(h[i]),
+                                  std::uint32_t(self_offset + i), tv, soft);
+            ax[i] += T(G * r.field.ax);
+            ay[i] += T(G * r.field.ay);
+            az[i] += T(G * r.field.az);
+            phi[i] = T(G * r.field.phi);
+            if (r.missing) missing = 1;
+            multipoles += r.multipoles;
+            pairs += r.pairs;
+        }
+        multipoles_per_particle_ = n > 0 ? multipoles / double(n) : 0.0;
+        pairs_per_particle_ = n > 0 ? pairs / double(n) : 0.0;
+        if (missing)
+            throw Error("gravity: a tree walk needed a remote leaf that was not exchanged");
+    }
+
+    SofteningTable<T> soft_;
+    double G_, theta_;
+    std::uint32_t bucket_;
+    GravityTree<T> tree_;
+    GravitySources<T> src_;
+    std::vector<std::uint32_t> src_begin_, src_end_;
+    std::vector<std::uint64_t> keys_;
+    std::size_t remote_ = 0;
+    double multipoles_per_particle_ = 0, pairs_per_particle_ = 0;
+};
+
+} // namespace exasph
