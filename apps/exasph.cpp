@@ -104,7 +104,7 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
             snapshot_default += (snapshot_default.empty() ? "" : ",") + std::string(info.name);
     app.add_option("-f,--fields", cfg.snapshot_fields,
                    "Snapshot fields, comma-separated (default: " + snapshot_default +
-                       "); x,y,z are always written")
+                       ", phi only with gravity); x,y,z are always written")
         ->delimiter(',');
     app.add_option("--checkpoint-every", cfg.checkpoint_every,
                    "Write a checkpoint every N steps (also at the end of the run)")

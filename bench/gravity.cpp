@@ -1,11 +1,14 @@
-// Tree gravity (issue 6): time of one gravity pass (top tree, subtrees, walk) on the Evrard
-// sphere (rho ~ 1/r) made from a lattice, one rank.
+// Tree gravity (issue 6) on the Evrard sphere (rho ~ 1/r) made from a lattice, one rank.
 //   build/bench/bench_gravity [--benchmark_filter=...]
-// Arguments: lattice side (particles ~ 0.52 side^3), gravity leaf size, theta x 100.
-// items/s = particles per second.
+// bm_gravity: time of one gravity pass (top tree, subtrees, walk); arguments: lattice side
+// (particles ~ 0.52 side^3), gravity leaf size, theta x 100; items/s = particles per second.
+// bm_force_error: RMS and largest relative acceleration error against direct summation
+// (counters rms, max) for theta x 100 on the side-28 sphere (11,536 particles; an even side
+// keeps a particle off the centre, where the force vanishes and relative errors mean nothing).
 #include <benchmark/benchmark.h>
 #include <mpi.h>
 
+#include "../tests/common/direct_gravity.hpp"
 #include "exasph/cases/evrard.hpp"
 #include "exasph/domain/domain.hpp"
 #include "exasph/gravity/gravity_solver.hpp"
@@ -35,7 +38,39 @@ void bm_gravity(benchmark::State& state) {
     state.counters["pairs"] = solver.pairs_per_particle();
 }
 
+void bm_force_error(benchmark::State& state) {
+    EvrardParams ep;
+    ep.side = 28;
+    auto ic = make_evrard<double>(ep, UnitCubePoints::lattice(28), 0, 1, MPI_COMM_SELF);
+    auto& ps = ic.particles;
+    Domain<double> dom(MPI_COMM_SELF, 128, 64, CurveKind::hilbert);
+    dom.init(ps, ic.box);
+    dom.sync(ps, ic.box);
+    KernelTable<double> kernel(sinc_kernel(6));
+    GravitySolver<double> solver(kernel, 1.0, double(state.range(0)) / 100.0, 16);
+    const auto ref = testref::direct_gravity(ps, dom.n_owned(), solver.softening().view());
+    for (auto _ : state) {
+        for (Field f : {Field::ax, Field::ay, Field::az})
+            std::fill(ps[f].begin(), ps[f].end(), 0.0);
+        solver.compute(ps, dom.n_owned(), dom.assignment(), ic.box, dom.curve(), dom.collectives());
+    }
+    double rms = 0, mx = 0;
+    for (std::size_t i = 0; i < dom.n_owned(); ++i) {
+        const double e = std::hypot(ps[Field::ax][i] - ref[i].ax, ps[Field::ay][i] - ref[i].ay,
+                                    ps[Field::az][i] - ref[i].az) /
+                         std::hypot(ref[i].ax, ref[i].ay, ref[i].az);
+        rms += e * e;
+        mx = std::max(mx, e);
+    }
+    state.counters["rms"] = std::sqrt(rms / double(dom.n_owned()));
+    state.counters["max"] = mx;
+    state.counters["multipoles"] = solver.multipoles_per_particle();
+    state.counters["pairs"] = solver.pairs_per_particle();
+}
+
 } // namespace
+
+BENCHMARK(bm_force_error)->DenseRange(20, 80, 10)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK(bm_gravity)
     ->ArgsProduct({{27}, {4, 8, 16, 32, 64}, {50}})

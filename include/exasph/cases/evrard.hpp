@@ -76,7 +76,9 @@ InitialConditions<T> make_evrard(const EvrardParams& ep, const UnitCubePoints& p
     const double m = ep.mass / double(total);
     for (std::size_t k = 0; k < ps.size(); ++k) {
         const double x = ps[Field::x][k], y = ps[Field::y][k], z = ps[Field::z][k];
-        const double r = std::max(std::sqrt(x * x + y * y + z * z), 1e-6 * ep.radius);
+        // h from the density at r, but not closer to the centre than half a point spacing (an odd
+        // lattice puts a point at r = 0, where rho diverges).
+        const double r = std::max(std::sqrt(x * x + y * y + z * z), ep.radius * points.spacing());
         ps[Field::m][k] = T(m);
         ps[Field::h][k] = T(initial_smoothing_length(std::cbrt(m / evrard_density(ep, r)), ep.ng0));
     }

@@ -21,23 +21,30 @@ struct GravityResult {
     std::uint32_t multipoles = 0, pairs = 0; // interactions evaluated
 };
 
-// Softened pair interaction (SPEC 8) of a particle at x (smoothing length h) with source j.
+// Softened pair field (SPEC 8) at displacement d = x_a - x_b from a source of mass m, with the
+// pair's smoothing length h_ab = (h_a + h_b)/2.
 template <class T>
-EXASPH_HD void add_pair_field(const GravityTreeView<T>& tv, const SofteningView<T>& soft,
-                              std::uint32_t j, double x, double y, double z, double h,
-                              GravityField& f) {
-    const double dx = x - tv.x[j], dy = y - tv.y[j], dz = z - tv.z[j];
-    const double hab = 0.5 * (h + double(tv.h[j]));
+EXASPH_HD EXASPH_INLINE GravityField pair_field(double dx, double dy, double dz, double m,
+                                                double hab, const SofteningView<T>& soft) {
     const double inv_h = 1.0 / hab;
     const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
     T force, psi;
     soft.eval(T(r * inv_h), force, psi);
-    const double mj = tv.m[j];
-    const double s = -mj * double(force) * inv_h * inv_h * inv_h;
-    f.ax += s * dx;
-    f.ay += s * dy;
-    f.az += s * dz;
-    f.phi -= mj * double(psi) * inv_h;
+    const double s = -m * double(force) * inv_h * inv_h * inv_h;
+    return {s * dx, s * dy, s * dz, -m * double(psi) * inv_h};
+}
+
+// Adds the pair field of source j at a particle at x with smoothing length h.
+template <class T>
+EXASPH_HD void add_pair_field(const GravityTreeView<T>& tv, const SofteningView<T>& soft,
+                              std::uint32_t j, double x, double y, double z, double h,
+                              GravityField& f) {
+    const GravityField g = pair_field(x - tv.x[j], y - tv.y[j], z - tv.z[j], double(tv.m[j]),
+                                      0.5 * (h + double(tv.h[j])), soft);
+    f.ax += g.ax;
+    f.ay += g.ay;
+    f.az += g.az;
+    f.phi += g.phi;
 }
 
 // Barnes-Hut walk for one particle (position x, smoothing length h, source index `self`, which

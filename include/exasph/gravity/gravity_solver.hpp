@@ -8,6 +8,7 @@
 
 #include "exasph/domain/collectives.hpp"
 #include "exasph/domain/global_tree.hpp"
+#include "exasph/gravity/gravity_group_kern.hpp"
 #include "exasph/gravity/gravity_tree.hpp"
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/sfc/keys.hpp"
@@ -230,6 +231,8 @@ class GravitySolver {
         return self_offset;
     }
 
+    // One tree walk per group (leaf of the gravity tree) of owned particles, then every particle
+    // of the group evaluates the group's list.
     void walk(ParticleSet<T>& ps, std::size_t n, std::size_t self_offset) {
         const auto tv = tree_.view(src_);
         const auto soft = soft_.view();
@@ -237,22 +240,38 @@ class GravitySolver {
         T* phi = ps.data(Field::phi);
         const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z),
                 *h = ps.data(Field::h);
+        const auto& nodes = tree_.nodes();
+        groups_.clear();
+        for (std::uint32_t g : tree_.groups())
+            if (nodes[g].begin >= self_offset && nodes[g].end <= self_offset + n)
+                groups_.push_back(g);
         const double G = G_;
         int missing = 0;
         double multipoles = 0, pairs = 0;
-        const auto nn = std::int64_t(n);
-#pragma omp parallel for schedule(dynamic, 64) reduction(max : missing) \
-    reduction(+ : multipoles, pairs)
-        for (std::int64_t i = 0; i < nn; ++i) {
-            auto r = gravity_kern(double(x[i]), double(y[i]), double(z[i]), double(h[i]),
-                                  std::uint32_t(self_offset + i), tv, soft);
-            ax[i] += T(G * r.field.ax);
-            ay[i] += T(G * r.field.ay);
-            az[i] += T(G * r.field.az);
-            phi[i] = T(G * r.field.phi);
-            if (r.missing) missing = 1;
-            multipoles += r.multipoles;
-            pairs += r.pairs;
+        const auto ng = std::int64_t(groups_.size());
+#pragma omp parallel reduction(max : missing) reduction(+ : multipoles, pairs)
+        {
+            GravityInteractionList list;
+#pragma omp for schedule(dynamic, 2)
+            for (std::int64_t k = 0; k < ng; ++k) {
+                const GravityNode<T>& grp = nodes[groups_[k]];
+                collect_interactions(tv, grp, list);
+                if (list.missing) missing = 1;
+                std::uint32_t npairs = 0;
+                for (std::size_t r = 0; r < list.ranges.size(); r += 2)
+                    npairs += list.ranges[r + 1] - list.ranges[r];
+                for (std::uint32_t j = grp.begin; j < grp.end; ++j) {
+                    const std::size_t i = j - self_offset;
+                    const GravityField f = evaluate_interactions(
+                        list, tv, soft, double(x[i]), double(y[i]), double(z[i]), double(h[i]), j);
+                    ax[i] += T(G * f.ax);
+                    ay[i] += T(G * f.ay);
+                    az[i] += T(G * f.az);
+                    phi[i] = T(G * f.phi);
+                }
+                multipoles += double(list.nodes.size()) * (grp.end - grp.begin);
+                pairs += double(npairs) * (grp.end - grp.begin);
+            }
         }
         multipoles_per_particle_ = n > 0 ? multipoles / double(n) : 0.0;
         pairs_per_particle_ = n > 0 ? pairs / double(n) : 0.0;
@@ -267,6 +286,7 @@ class GravitySolver {
     GravitySources<T> src_;
     std::vector<std::uint32_t> src_begin_, src_end_;
     std::vector<std::uint64_t> keys_;
+    std::vector<std::uint32_t> groups_; // gravity-tree leaves of owned particles
     std::size_t remote_ = 0;
     double multipoles_per_particle_ = 0, pairs_per_particle_ = 0;
 };

@@ -128,13 +128,18 @@ class GravityTree {
                 sub[g] = build_subtree(src, src_begin[g], src_end[g],
                                        cell_level(leaf_keys_[g + 1] - leaf_keys_[g]), bucket);
         nodes_.resize(num_top_);
+        groups_.clear();
         for (std::int64_t g = 0; g < nl; ++g) {
             if (sub[g].empty()) continue;
             const auto offset = std::int32_t(nodes_.size());
             for (auto nd : sub[g]) {
-                if (nd.first_child >= 0) nd.first_child += offset;
+                if (nd.first_child >= 0)
+                    nd.first_child += offset;
+                else if (sub[g].size() > 1)
+                    groups_.push_back(std::uint32_t(nodes_.size()));
                 nodes_.push_back(nd);
             }
+            if (sub[g].size() == 1) groups_.push_back(leaf_node_[g]);
             // The subtree root is the leaf's own cell: the top node takes over its children (or
             // its particles); its multipole stays the one every rank has.
             auto& leaf = nodes_[leaf_node_[g]];
@@ -151,6 +156,11 @@ class GravityTree {
     }
     const std::vector<GravityNode<T>>& nodes() const {
         return nodes_;
+    }
+    // The particle leaves (each source in exactly one), in source order: the groups that share
+    // one interaction list in the walk.
+    const std::vector<std::uint32_t>& groups() const {
+        return groups_;
     }
     std::size_t num_top() const {
         return num_top_;
@@ -213,6 +223,7 @@ class GravityTree {
     std::vector<std::uint64_t> leaf_keys_;
     std::vector<GravityNode<T>> nodes_;
     std::vector<std::uint32_t> leaf_node_; // top node of each global leaf
+    std::vector<std::uint32_t> groups_;
     std::size_t num_top_ = 0;
 };
 

@@ -127,36 +127,50 @@ struct GravityField {
     double ax = 0, ay = 0, az = 0, phi = 0;
 };
 
-EXASPH_HD inline void add_multipole_field(const Multipole& mp, double dx, double dy, double dz,
-                                          GravityField& f) {
+// The terms of one multipole at displacement d; q(c) and s(c) return the components c of the
+// quadrupole and octupole in the order of Multipole (accessors, so that the same code reads a
+// Multipole or a column of packed moments inside a vectorised loop).
+template <class Q, class S>
+EXASPH_HD EXASPH_INLINE GravityField multipole_field(double mass, Q q, S s, double dx, double dy,
+                                                     double dz) {
     const double r2 = dx * dx + dy * dy + dz * dz;
     const double inv_r = 1.0 / std::sqrt(r2);
     const double inv_r2 = inv_r * inv_r;
     const double inv_r3 = inv_r * inv_r2;
     const double inv_r5 = inv_r3 * inv_r2;
-    const double* q = mp.q;
-    const double qx = q[0] * dx + q[1] * dy + q[2] * dz;
-    const double qy = q[1] * dx + q[3] * dy + q[4] * dz;
-    const double qz = q[2] * dx + q[4] * dy + q[5] * dz;
+    const double qx = q(0) * dx + q(1) * dy + q(2) * dz;
+    const double qy = q(1) * dx + q(3) * dy + q(4) * dz;
+    const double qz = q(2) * dx + q(4) * dy + q(5) * dz;
     const double dqd = dx * qx + dy * qy + dz * qz;
     // S:dd (vector), A and T from the ten octupole components.
-    const double* s = mp.s;
-    const double sx = s[0] * dx * dx + 2 * s[1] * dx * dy + 2 * s[2] * dx * dz + s[3] * dy * dy +
-                      2 * s[4] * dy * dz + s[5] * dz * dz;
-    const double sy = s[1] * dx * dx + 2 * s[3] * dx * dy + 2 * s[4] * dx * dz + s[6] * dy * dy +
-                      2 * s[7] * dy * dz + s[8] * dz * dz;
-    const double sz = s[2] * dx * dx + 2 * s[4] * dx * dy + 2 * s[5] * dx * dz + s[7] * dy * dy +
-                      2 * s[8] * dy * dz + s[9] * dz * dz;
+    const double sx = s(0) * dx * dx + 2 * s(1) * dx * dy + 2 * s(2) * dx * dz + s(3) * dy * dy +
+                      2 * s(4) * dy * dz + s(5) * dz * dz;
+    const double sy = s(1) * dx * dx + 2 * s(3) * dx * dy + 2 * s(4) * dx * dz + s(6) * dy * dy +
+                      2 * s(7) * dy * dz + s(8) * dz * dz;
+    const double sz = s(2) * dx * dx + 2 * s(4) * dx * dy + 2 * s(5) * dx * dz + s(7) * dy * dy +
+                      2 * s(8) * dy * dz + s(9) * dz * dz;
     const double a3 = sx * dx + sy * dy + sz * dz;
-    const double tx = s[0] + s[3] + s[5], ty = s[1] + s[6] + s[8], tz = s[2] + s[7] + s[9];
+    const double tx = s(0) + s(3) + s(5), ty = s(1) + s(6) + s(8), tz = s(2) + s(7) + s(9);
     const double b3 = tx * dx + ty * dy + tz * dz;
     const double inv_r7 = inv_r5 * inv_r2;
     const double radial =
-        -mp.mass * inv_r3 - 2.5 * dqd * inv_r7 - 17.5 * a3 * inv_r7 * inv_r2 + 7.5 * b3 * inv_r7;
-    f.ax += radial * dx + qx * inv_r5 + 7.5 * sx * inv_r7 - 1.5 * tx * inv_r5;
-    f.ay += radial * dy + qy * inv_r5 + 7.5 * sy * inv_r7 - 1.5 * ty * inv_r5;
-    f.az += radial * dz + qz * inv_r5 + 7.5 * sz * inv_r7 - 1.5 * tz * inv_r5;
-    f.phi -= mp.mass * inv_r + 0.5 * dqd * inv_r5 + 2.5 * a3 * inv_r7 - 1.5 * b3 * inv_r5;
+        -mass * inv_r3 - 2.5 * dqd * inv_r7 - 17.5 * a3 * inv_r7 * inv_r2 + 7.5 * b3 * inv_r7;
+    GravityField f;
+    f.ax = radial * dx + qx * inv_r5 + 7.5 * sx * inv_r7 - 1.5 * tx * inv_r5;
+    f.ay = radial * dy + qy * inv_r5 + 7.5 * sy * inv_r7 - 1.5 * ty * inv_r5;
+    f.az = radial * dz + qz * inv_r5 + 7.5 * sz * inv_r7 - 1.5 * tz * inv_r5;
+    f.phi = -(mass * inv_r + 0.5 * dqd * inv_r5 + 2.5 * a3 * inv_r7 - 1.5 * b3 * inv_r5);
+    return f;
+}
+
+EXASPH_HD inline void add_multipole_field(const Multipole& mp, double dx, double dy, double dz,
+                                          GravityField& f) {
+    const GravityField g = multipole_field(
+        mp.mass, [&](int c) { return mp.q[c]; }, [&](int c) { return mp.s[c]; }, dx, dy, dz);
+    f.ax += g.ax;
+    f.ay += g.ay;
+    f.az += g.az;
+    f.phi += g.phi;
 }
 
 } // namespace exasph

@@ -19,7 +19,7 @@ struct SofteningView {
     T inv_dq;
     int size;
 
-    EXASPH_HD void eval(T q, T& f, T& psi) const {
+    EXASPH_HD EXASPH_INLINE void eval(T q, T& f, T& psi) const {
         if (q >= T(2)) {
             T iq = T(1) / q;
             psi = iq;

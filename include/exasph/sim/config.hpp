@@ -25,11 +25,13 @@ struct Config {
     double conductivity = 0.0;    // artificial conductivity alpha_u (0: off)
     bool volume_elements = false; // generalised volume elements X = (m/rho)^ve_exponent
     double ve_exponent = 0.7;
-    double G = -1.0;         // gravitational constant (--G); < 0: the case's (0: no gravity)
-    double theta = 0.5;      // Barnes-Hut opening angle (SPEC 8)
-    double accel_eps = 0.2;  // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)
-    int threads = 0;         // 0: OpenMP default
-    int bucket_size = 64;    // local octree leaf size
+    double G = -1.0;        // gravitational constant (--G); < 0: the case's (0: no gravity)
+    double theta = 0.5;     // Barnes-Hut opening angle (SPEC 8)
+    double accel_eps = 0.2; // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)
+    int gravity_bucket =
+        16;               // gravity-tree leaf size: one interaction list per leaf (bench_gravity)
+    int threads = 0;      // 0: OpenMP default
+    int bucket_size = 64; // local octree leaf size
     int global_bucket = 128; // global (top) tree leaf size: the unit of MPI load balance
     CurveKind curve = CurveKind::hilbert;
     bool lattice = false; // sedov/noh: regular lattice instead of the (cached) glass

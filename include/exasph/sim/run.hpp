@@ -163,12 +163,14 @@ inline int run(Config cfg, std::ostream& out) {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
     const bool root = rank == 0;
-    const auto fields = snapshot_field_list(cfg.snapshot_fields);
+    auto fields = snapshot_field_list(cfg.snapshot_fields);
     std::string units;
     double case_t_end = 0;
     auto sim_ptr = make_simulation(cfg, units, case_t_end);
     Simulation<double>& sim = *sim_ptr;
-    cfg.G = sim.gravitational_constant(); // outputs record the G the run uses
+    cfg.G = sim.gravitational_constant();          // outputs record the G the run uses
+    if (cfg.G == 0 && cfg.snapshot_fields.empty()) // no potential to write by default
+        std::erase(fields, Field::phi);
     const double t_end = cfg.t_end > 0 ? cfg.t_end : (cfg.steps < 0 ? case_t_end : -1.0);
     if (t_end <= 0 && cfg.steps < 0)
         throw input_error("no end: give -s STEPS or --t-end T (the initial conditions set none)",

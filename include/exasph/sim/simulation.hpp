@@ -81,7 +81,7 @@ class Simulation {
                 throw input_error("self-gravity needs an open box: periodic gravity (Ewald "
                                   "summation) is not implemented; run with --G 0",
                                   true);
-            gravity_.emplace(kernel_, G, cfg.theta, std::uint32_t(cfg.bucket_size));
+            gravity_.emplace(kernel_, G, cfg.theta, std::uint32_t(cfg.gravity_bucket));
         }
         if (restart) {
             time_ = restart->time;

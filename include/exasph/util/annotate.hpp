@@ -6,3 +6,11 @@
 #else
 #define EXASPH_HD
 #endif
+
+// Forces inlining of small math helpers called inside `omp simd` loops: a call that is not
+// inlined keeps the loop scalar.
+#if defined(__GNUC__) || defined(__clang__)
+#define EXASPH_INLINE inline __attribute__((always_inline))
+#else
+#define EXASPH_INLINE inline
+#endif

@@ -92,7 +92,7 @@ void tree_gravity(ParticleSet<double>& ps, double theta) {
     dom.init(ps, box);
     dom.sync(ps, box);
     for (Field f : {Field::ax, Field::ay, Field::az}) std::fill(ps[f].begin(), ps[f].end(), 0.0);
-    GravitySolver<double> solver(kernel(), 1.0, theta, 64);
+    GravitySolver<double> solver(kernel(), 1.0, theta, 16);
     solver.compute(ps, dom.n_owned(), dom.assignment(), box, dom.curve(), dom.collectives());
 }
 
