@@ -3,7 +3,10 @@
 potential and total energy against time, as a PNG (e.g. the Evrard collapse, SPEC 9.4).
 
     /usr/bin/python3 tools/energies.py RUN/diagnostics.csv [RUN2/diagnostics.csv ...] \
-        [-o energies.png] [--label NAME ...] [--title TEXT]
+        [-o energies.png] [--label NAME ...] [--title TEXT] [--reference CURVES.csv]
+
+--reference overlays published curves given as a CSV with a header line: a `time` column and
+any of ekin, eint, epot, etot (e.g. digitised from a paper), drawn as markers.
 
 Prints, per run, the largest drift of the total energy relative to |E_pot| at the first row and
 the time of the kinetic-energy maximum. Exits 2 with one line on a missing or malformed file.
@@ -51,9 +54,11 @@ def main():
     ap.add_argument("-o", "--output", default="energies.png", help="PNG to write")
     ap.add_argument("--label", action="append", help="legend label per run (in order)")
     ap.add_argument("--title", default="", help="figure title")
+    ap.add_argument("--reference", help="CSV of published curves (time + ekin/eint/epot/etot)")
+    ap.add_argument("--reference-label", default="reference", help="legend label of --reference")
     args = ap.parse_args()
     labels = args.label or []
-    fig, ax = plt.subplots(figsize=(7, 4.5))
+    fig, ax = plt.subplots(figsize=(9.5, 4.5))
     styles = ["-", "--", ":", "-."]
     colours = {"ekin": "tab:red", "eint": "tab:blue", "epot": "tab:green", "etot": "black"}
     names = {"ekin": "kinetic", "eint": "internal", "epot": "potential", "etot": "total"}
@@ -70,10 +75,23 @@ def main():
         print(f"{path}: {d.size} rows to t = {d['time'][-1]:.4g}; worst total-energy drift "
               f"{drift:.3e} ({100 * drift / scale:.2f} % of |E_pot(0)|); E_kin max "
               f"{d['ekin'][imax]:.4f} at t = {d['time'][imax]:.3f}; E_pot min {d['epot'].min():.4f}")
+    if args.reference:
+        if not Path(args.reference).exists():
+            fail(f"{args.reference}: no such file")
+        try:
+            ref = np.atleast_1d(np.genfromtxt(args.reference, delimiter=",", names=True))
+        except (ValueError, OSError) as exc:
+            fail(f"{args.reference}: not a CSV ({exc})")
+        if ref.dtype.names is None or "time" not in ref.dtype.names:
+            fail(f"{args.reference}: needs a header line with a time column")
+        for key in ["ekin", "eint", "epot", "etot"]:
+            if key in ref.dtype.names:
+                ax.plot(ref["time"], ref[key], "o", ms=3, mfc="none", color=colours[key],
+                        label=f"{names[key]} ({args.reference_label})")
     ax.set_xlabel("t")
     ax.set_ylabel("energy")
     ax.axhline(0, color="grey", lw=0.5)
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     if args.title:
         ax.set_title(args.title)
     fig.tight_layout()

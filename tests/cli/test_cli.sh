@@ -39,6 +39,8 @@ expect_rejected "--courant" --courant 0
 expect_rejected "--t-end" --t-end -1
 expect_rejected "--threads" --threads 0
 expect_rejected "smoothing length" -n 4 -s 1
+expect_rejected "--theta" --init evrard --theta 1.5
+expect_rejected "open box" --init sedov --lattice -n 10 --G 1 -s 1
 
 "$exe" --help | grep -q -- "--kernel-exponent" || fail "--help lacks options"
 "$exe" --version | grep -q "exasph" || fail "--version"
