@@ -18,8 +18,11 @@ void silence_hdf5() {
     }
 }
 
-[[noreturn]] void fail(const std::string& path, const std::string& what, int code) {
-    throw Error(path + ": " + what, code);
+// `all_ranks`: every rank of the communicator fails the same way (e.g. a check of the file
+// itself that every rank makes), so the error ends the run cleanly instead of aborting it.
+[[noreturn]] void fail(const std::string& path, const std::string& what, int code,
+                       bool all_ranks = false) {
+    throw Error(path + ": " + what, code, all_ranks);
 }
 
 hid_t access_plist(MPI_Comm comm) {
@@ -111,9 +114,9 @@ File File::open_read(const std::string& path, MPI_Comm comm) {
     htri_t exists = H5Fis_hdf5(path.c_str());
     if (exists <= 0) {
         FILE* f = std::fopen(path.c_str(), "rb");
-        if (!f) fail(path, "no such file or not readable", 2);
+        if (!f) fail(path, "no such file or not readable", 2, true);
         std::fclose(f);
-        fail(path, "not an HDF5 file (truncated or corrupted?)", 2);
+        fail(path, "not an HDF5 file (truncated or corrupted?)", 2, true);
     }
     hid_t fapl = access_plist(comm);
     hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);

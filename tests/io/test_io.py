@@ -4,7 +4,8 @@ XDMF sidecar, and bad input. Run by CTest as
 
     test_io.py TEST --exe build/exasph --mpirun "mpirun --oversubscribe [--allow-run-as-root]"
 
-with TEST one of: restart, sigkill, sigterm, snapshot, bad_input. Exits non-zero on failure.
+with TEST one of: restart, sigkill, sigterm, snapshot, bad_input, corrupt. Exits non-zero on
+failure.
 """
 import argparse
 import os
@@ -259,9 +260,40 @@ def test_bad_input(r):
     assert not failures, "\n".join(failures)
 
 
+def test_corrupt(r):
+    """Issue 8, acceptance 3: a checkpoint whose bytes are altered on disk is refused on restart
+    with a clear message (one flipped bit in the data of x, u or id; a damaged file signature),
+    on 1 and 2 ranks; the unaltered file restarts."""
+    a = r.work / "run"
+    r.run(1, *RUN, "-s", 5, "--checkpoint-every", 5, "--out", a)
+    cp = a / "checkpoint_000005.h5"
+    r.run(2, "--restart", cp, "-s", 6, "--threads", 1, "--out", r.work / "ok")
+    with h5py.File(cp, "r") as f:
+        assert len(f.attrs["checksum"]) == 16
+        where = {k: (f["state"][k].id.get_offset(), f["state"][k].id.get_storage_size())
+                 for k in ("x", "u", "id")}
+    original = cp.read_bytes()
+    cases = [(k, off + size // 2, "checksum mismatch") for k, (off, size) in where.items()]
+    cases.append(("signature", 2, "not an HDF5 file"))
+    for name, offset, needle in cases:
+        data = bytearray(original)
+        data[offset] ^= 0x10
+        bad = r.work / f"bad_{name}.h5"
+        bad.write_bytes(bytes(data))
+        for ranks in (1, 2):
+            p = r.run(ranks, "--restart", bad, "-s", 6, "--threads", 1,
+                      "--out", r.work / f"out_{name}{ranks}", expect=None)
+            ours = [line for line in p.stderr.splitlines() if line.startswith("exasph")]
+            msg = ours[0] if ours else p.stderr
+            assert p.returncode == 2 and needle in msg, (name, ranks, p.returncode, p.stderr)
+            assert len(ours) == 1, p.stderr  # one line from exasph (mpirun adds its own)
+            print(f"{name} altered, {ranks} rank(s): exit 2: {msg}")
+
+
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("test", choices=["restart", "sigkill", "sigterm", "snapshot", "bad_input"])
+    ap.add_argument("test", choices=["restart", "sigkill", "sigterm", "snapshot", "bad_input",
+                                     "corrupt"])
     ap.add_argument("--exe", required=True)
     ap.add_argument("--mpirun", required=True)
     args = ap.parse_args()

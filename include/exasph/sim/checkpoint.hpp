@@ -14,10 +14,33 @@
 #include "exasph/sim/run_attributes.hpp"
 #include "exasph/sim/simulation.hpp"
 #include "exasph/sim/snapshot.hpp"
+#include "exasph/util/checksum.hpp"
 
 namespace exasph {
 
-inline constexpr const char* kCheckpointFormat = "exasph-checkpoint-1";
+inline constexpr const char* kCheckpointFormat = "exasph-checkpoint-2";
+inline constexpr const char* kCheckpointFormatUnsummed = "exasph-checkpoint-1"; // no checksum
+
+// Checksum of everything a restart continues from: per particle a hash chain of its id and the
+// bits of every state field (in field-list order), summed over particles modulo 2^64 so that it
+// does not depend on how the particles are distributed or ordered; plus a chain of the scalars
+// and the global tree. One collective (a sum); rank-count independent.
+template <class T>
+std::uint64_t checkpoint_checksum(const ParticleSet<T>& ps, std::size_t n, const RestartState& rs,
+                                  double dt0, MPI_Comm comm) {
+    const auto fields = fields_with_role(kState);
+    std::uint64_t sum = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        HashChain h(ps.id[i]);
+        for (Field f : fields) h.add_float(ps[f][i]);
+        sum += h.value();
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_UINT64_T, MPI_SUM, comm);
+    HashChain scalars(0x65786173706800ull);
+    scalars.add_float(rs.time).add(std::uint64_t(rs.step)).add_float(rs.dt_m1).add_float(dt0);
+    for (auto k : rs.leaf_keys) scalars.add(k);
+    return sum + scalars.value();
+}
 
 // Test hook for the crash-safety test: with EXASPH_TEST_CHECKPOINT_STALL=STEP set, the checkpoint
 // of that step sleeps for a minute after writing half of its data (so a test can SIGKILL the run
@@ -41,8 +64,9 @@ inline void prune_checkpoints(const std::string& dir, std::size_t keep) {
 }
 
 // Everything needed to continue exactly: all state fields and ids of the owned particles, the
-// step, time, previous dt, first dt, box, EOS, parameters and the global tree. Atomic (temporary
-// name, then rename); the previous checkpoint is kept.
+// step, time, previous dt, first dt, box, EOS, parameters and the global tree, with their
+// checksum (verified on restart). Atomic (temporary name, then rename); the previous checkpoint
+// is kept.
 template <class T>
 std::string write_checkpoint(const Simulation<T>& sim, const Config& cfg, const std::string& units,
                              MPI_Comm comm) {
@@ -50,10 +74,13 @@ std::string write_checkpoint(const Simulation<T>& sim, const Config& cfg, const 
     const std::string path = numbered_path(cfg.out_dir, "checkpoint", rs.step, ".h5");
     int rank = 0;
     MPI_Comm_rank(comm, &rank);
+    const std::uint64_t checksum =
+        checkpoint_checksum(sim.particles(), sim.n_owned(), rs, sim.dt0(), comm);
     try {
         h5::File file = h5::File::create(temporary_name(path), comm);
         h5::Group root(file, "/", false);
         h5::write_attribute(root, "format", std::string(kCheckpointFormat));
+        h5::write_attribute(root, "checksum", hex64(checksum));
         write_run_attributes(root, cfg, sim.box(), sim.eos(), units);
         h5::write_attribute(root, "time", rs.time);
         h5::write_attribute(root, "step", std::int64_t(rs.step));
@@ -85,13 +112,15 @@ struct Checkpoint {
     RestartState rs;
 };
 
-// Reads a checkpoint written by any rank count; fills the physics parameters of cfg.
+// Reads a checkpoint written by any rank count; fills the physics parameters of cfg. Refuses a
+// file whose checksum does not match its contents (altered or corrupted on disk).
 template <class T>
 Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm comm) {
     h5::File file = h5::File::open_read(path, comm);
     h5::Group root(file, "/", false);
-    if (!h5::has_attribute(root, "format") ||
-        h5::read_attribute_string(root, "format") != kCheckpointFormat)
+    const std::string format =
+        h5::has_attribute(root, "format") ? h5::read_attribute_string(root, "format") : "";
+    if (format != kCheckpointFormat && format != kCheckpointFormatUnsummed)
         throw input_error(path + ": not an exasph checkpoint (attribute /format)", true);
     auto num = [&](const char* name) { return h5::read_attribute_doubles(root, name).at(0); };
     Checkpoint<T> cp;
@@ -117,10 +146,19 @@ Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm com
     h5::Group state(file, "/state", false);
     const auto fields = fields_with_role(kState);
     read_particle_fields(state, cp.ic.particles, fields, {}, true, comm);
-    collective_check(comm, [&] { validate_input_particles(cp.ic.particles, path, cp.ic.box); });
     h5::Group domain(file, "/domain", false);
     const std::uint64_t nkeys = h5::dataset_length(domain, "leaf_keys", true);
     cp.rs.leaf_keys = h5::read_u64(domain, "leaf_keys", 0, nkeys);
+    if (format == kCheckpointFormat) {
+        const std::string stored = h5::read_attribute_string(root, "checksum");
+        const std::string found = hex64(checkpoint_checksum(
+            cp.ic.particles, cp.ic.particles.size(), cp.rs, cp.ic.dt0, comm));
+        if (stored != found)
+            throw input_error(path + ": checksum mismatch (stored " + stored + ", contents " +
+                                  found + "): the file was altered or corrupted; not restarting",
+                              true);
+    }
+    collective_check(comm, [&] { validate_input_particles(cp.ic.particles, path, cp.ic.box); });
     return cp;
 }
 
