@@ -106,9 +106,31 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
                    "Snapshot fields, comma-separated (default: " + snapshot_default +
                        ", phi only with gravity); x,y,z are always written")
         ->delimiter(',');
-    app.add_option("--checkpoint-every", cfg.checkpoint_every,
-                   "Write a checkpoint every N steps (also at the end of the run)")
-        ->check(sign_check(false));
+    app.add_option_function<std::string>(
+           "--checkpoint-every",
+           [&cfg](const std::string& v) {
+               if (v == "auto") {
+                   cfg.checkpoint_auto = true;
+                   return;
+               }
+               std::size_t used = 0;
+               long long n = -1;
+               try {
+                   n = std::stoll(v, &used);
+               } catch (const std::exception&) {
+               }
+               if (used != v.size() || n <= 0)
+                   throw CLI::ValidationError("--checkpoint-every",
+                                              "expects a positive step count or auto, got " + v);
+               cfg.checkpoint_every = n;
+           },
+           "Write a checkpoint every N steps (also at the end of the run), or 'auto': every "
+           "sqrt(2 C M) s of wall time (Young/Daly) from the measured checkpoint cost C and the "
+           "run's MTBF M = --mtbf / nodes")
+        ->type_name("N|auto");
+    app.add_option("--mtbf", cfg.mtbf_hours,
+                   "With --checkpoint-every auto: mean time between failures of one node, hours")
+        ->check(CLI::PositiveNumber);
     app.add_option("--checkpoint-minutes", cfg.checkpoint_minutes,
                    "Write a checkpoint every M minutes of wall-clock time")
         ->check(sign_check(false));

@@ -4,8 +4,8 @@ XDMF sidecar, and bad input. Run by CTest as
 
     test_io.py TEST --exe build/exasph --mpirun "mpirun --oversubscribe [--allow-run-as-root]"
 
-with TEST one of: restart, sigkill, sigterm, snapshot, bad_input, corrupt. Exits non-zero on
-failure.
+with TEST one of: restart, sigkill, sigterm, snapshot, bad_input, corrupt, auto_interval.
+Exits non-zero on failure.
 """
 import argparse
 import os
@@ -290,10 +290,33 @@ def test_corrupt(r):
             print(f"{name} altered, {ranks} rank(s): exit 2: {msg}")
 
 
+def test_auto_interval(r):
+    """Issue 8, acceptance 4: --checkpoint-every auto checkpoints after the first step, then every
+    sqrt(2 C M) seconds, and reports the interval; bad combinations are refused."""
+    a = r.work / "auto"
+    p = r.run(1, *RUN, "-s", 40, "--checkpoint-every", "auto", "--mtbf", 1e-5, "--out", a)
+    lines = [l for l in p.stdout.splitlines() if l.startswith("checkpoint interval:")]
+    assert lines, p.stdout
+    head = [l for l in p.stdout.splitlines() if l.startswith("checkpoints: auto")]
+    assert head and "M = 0.0 s" in head[0], head  # 1e-5 h = 0.036 s on one node
+    for line in lines:  # "checkpoint interval: C = 0.012 s, M = 0.0 s -> every 0.0 s ..."
+        c = float(line.split("C = ")[1].split(" s")[0])
+        every = float(line.split("every ")[1].split(" s")[0])
+        expect = (2 * c * 0.036) ** 0.5
+        assert abs(every - expect) <= 0.05 + 0.01 * expect, (line, expect)
+    assert "checkpoint_000001.h5" in p.stdout, "no checkpoint after the first step"
+    print(f"{len(lines)} auto checkpoints; first: {lines[0]}")
+    for args, needle in ((("--checkpoint-every", "auto"), "--mtbf"),
+                         (("--mtbf", 2), "--checkpoint-every auto"),
+                         (("--checkpoint-every", "often"), "--checkpoint-every")):
+        p = r.run(1, *RUN, "-s", 1, *args, "--out", r.work / "bad", expect=2)
+        assert needle in p.stderr, p.stderr
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("test", choices=["restart", "sigkill", "sigterm", "snapshot", "bad_input",
-                                     "corrupt"])
+                                     "corrupt", "auto_interval"])
     ap.add_argument("--exe", required=True)
     ap.add_argument("--mpirun", required=True)
     args = ap.parse_args()

@@ -151,8 +151,8 @@ Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm com
     cp.rs.leaf_keys = h5::read_u64(domain, "leaf_keys", 0, nkeys);
     if (format == kCheckpointFormat) {
         const std::string stored = h5::read_attribute_string(root, "checksum");
-        const std::string found = hex64(checkpoint_checksum(
-            cp.ic.particles, cp.ic.particles.size(), cp.rs, cp.ic.dt0, comm));
+        const std::string found = hex64(
+            checkpoint_checksum(cp.ic.particles, cp.ic.particles.size(), cp.rs, cp.ic.dt0, comm));
         if (stored != found)
             throw input_error(path + ": checksum mismatch (stored " + stored + ", contents " +
                                   found + "): the file was altered or corrupted; not restarting",

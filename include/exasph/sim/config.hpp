@@ -43,6 +43,8 @@ struct Config {
     std::vector<std::string> snapshot_fields; // -f; empty: the snapshot fields of the field list
     std::int64_t checkpoint_every = -1;       // --checkpoint-every N
     double checkpoint_minutes = -1.0;         // --checkpoint-minutes M
+    bool checkpoint_auto = false;             // --checkpoint-every auto (Young/Daly)
+    double mtbf_hours = -1.0;                 // --mtbf H: MTBF of one node, hours
     std::string restart_file;                 // --restart FILE
 };
 

@@ -19,6 +19,7 @@
 #include "exasph/build_info.hpp"
 #include "exasph/sim/cases.hpp"
 #include "exasph/sim/checkpoint.hpp"
+#include "exasph/sim/checkpoint_interval.hpp"
 #include "exasph/sim/simulation.hpp"
 #include "exasph/sim/snapshot.hpp"
 #include "exasph/util/memory.hpp"
@@ -103,20 +104,32 @@ extern "C" inline void on_stop_signal(int signum) {
 }
 } // namespace detail
 
-// When snapshots and checkpoints are due (-w, --checkpoint-every, --checkpoint-minutes).
+// When snapshots and checkpoints are due (-w, --checkpoint-every N|auto, --checkpoint-minutes).
 class OutputSchedule {
   public:
-    OutputSchedule(const Config& cfg, double t_now) : cfg_(cfg) {
+    // `mtbf_seconds`: the run's MTBF, used by --checkpoint-every auto.
+    OutputSchedule(const Config& cfg, double t_now, double mtbf_seconds = 0)
+        : cfg_(cfg), mtbf_(mtbf_seconds) {
         if (cfg.snapshot_every_time > 0)
             next_snapshot_time_ =
                 (std::floor(t_now / cfg.snapshot_every_time) + 1) * cfg.snapshot_every_time;
+        if (cfg.checkpoint_minutes > 0) interval_ = 60.0 * cfg.checkpoint_minutes;
     }
-    bool checkpointing() const { return cfg_.checkpoint_every > 0 || cfg_.checkpoint_minutes > 0; }
+    bool checkpointing() const {
+        return cfg_.checkpoint_every > 0 || cfg_.checkpoint_minutes > 0 || cfg_.checkpoint_auto;
+    }
+    // Wall-clock checkpoints; with auto, the first comes after the first step (it measures C).
     bool clock_due(double wall_now) const {
-        return cfg_.checkpoint_minutes > 0 &&
-               wall_now - last_checkpoint_wall_ >= 60.0 * cfg_.checkpoint_minutes;
+        if (cfg_.checkpoint_auto && interval_ <= 0) return true;
+        return interval_ > 0 && wall_now - last_checkpoint_wall_ >= interval_;
     }
-    void checkpoint_written(double wall_now) { last_checkpoint_wall_ = wall_now; }
+    // Records a checkpoint that took `cost` seconds; with auto, returns the new interval (else 0).
+    double checkpoint_written(double wall_now, double cost) {
+        last_checkpoint_wall_ = wall_now;
+        if (!cfg_.checkpoint_auto) return 0;
+        interval_ = young_daly_interval(std::max(cost, 1e-6), mtbf_);
+        return interval_;
+    }
     bool checkpoint_due(std::int64_t step) const {
         return cfg_.checkpoint_every > 0 && step % cfg_.checkpoint_every == 0;
     }
@@ -131,6 +144,8 @@ class OutputSchedule {
 
   private:
     const Config& cfg_;
+    double mtbf_ = 0;
+    double interval_ = 0; // wall seconds between clock checkpoints (0: none)
     double next_snapshot_time_ = 0;
     double last_checkpoint_wall_ = wall_seconds();
 };
@@ -155,7 +170,20 @@ inline std::unique_ptr<Simulation<double>> make_simulation(Config& cfg, std::str
 
 // Runs a whole simulation as configured on all ranks of MPI_COMM_WORLD; rank 0 prints the
 // header, one row per step and a summary. Returns the exit code; errors are thrown as Error.
+// Checks the combinations of options the command line cannot (all ranks; input errors).
+inline void check_output_options(const Config& cfg) {
+    if (cfg.checkpoint_auto && !(cfg.mtbf_hours > 0))
+        throw input_error("--checkpoint-every auto needs --mtbf HOURS (the MTBF of one node)",
+                          true);
+    if (!cfg.checkpoint_auto && cfg.mtbf_hours > 0)
+        throw input_error("--mtbf is used only with --checkpoint-every auto", true);
+    if (cfg.checkpoint_auto && cfg.checkpoint_minutes > 0)
+        throw input_error("--checkpoint-every auto and --checkpoint-minutes exclude each other",
+                          true);
+}
+
 inline int run(Config cfg, std::ostream& out) {
+    check_output_options(cfg);
 #ifdef _OPENMP
     if (cfg.threads > 0) omp_set_num_threads(cfg.threads);
 #endif
@@ -198,7 +226,16 @@ inline int run(Config cfg, std::ostream& out) {
                          "L_z", "imbal", "halo avg/mx", "s/step", "ETA s");
     }
     if (t_end > 0) sim.set_end_time(t_end);
-    OutputSchedule schedule(cfg, sim.time());
+    double mtbf = 0;
+    if (cfg.checkpoint_auto) {
+        const int nodes = count_nodes(MPI_COMM_WORLD);
+        mtbf = run_mtbf_seconds(cfg.mtbf_hours, nodes);
+        if (root)
+            out << strprintf("checkpoints: auto (Young/Daly sqrt(2 C M)), MTBF %g h per node x %d "
+                             "node(s): M = %.1f s\n",
+                             cfg.mtbf_hours, nodes, mtbf);
+    }
+    OutputSchedule schedule(cfg, sim.time(), mtbf);
     detail::g_stop_signal = 0;
     std::signal(SIGINT, detail::on_stop_signal);
     std::signal(SIGTERM, detail::on_stop_signal);
@@ -214,10 +251,15 @@ inline int run(Config cfg, std::ostream& out) {
     auto checkpoint = [&] {
         double w = wall_seconds();
         std::string path = write_checkpoint(sim, cfg, units, MPI_COMM_WORLD);
-        output_wall += wall_seconds() - w;
-        schedule.checkpoint_written(wall_seconds());
+        const double cost = wall_seconds() - w;
+        output_wall += cost;
+        const double interval = schedule.checkpoint_written(wall_seconds(), cost);
         last_checkpoint = sim.step_count();
-        if (root) out << strprintf("checkpoint %s (%.3f s)\n", path.c_str(), wall_seconds() - w);
+        if (root) out << strprintf("checkpoint %s (%.3f s)\n", path.c_str(), cost);
+        if (root && interval > 0)
+            out << strprintf("checkpoint interval: C = %.3f s, M = %.1f s -> every %.1f s of wall "
+                             "time\n",
+                             cost, mtbf, interval);
     };
     while (!done()) {
         if (detail::g_stop_signal) sim.raise_flag(kStopRequested);
