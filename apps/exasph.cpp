@@ -176,6 +176,15 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
                    "Gravity: time step at most sqrt(eps h / |a|) per particle")
         ->check(CLI::Range(1e-6, 10.0))
         ->capture_default_str();
+    app.add_option("--on-sdc", cfg.on_sdc,
+                   "Silent data corruption (state changed between steps, broken invariants, "
+                   "conservation watchdog): rollback to the last verified in-memory state, "
+                   "abort, or off (no checks)")
+        ->check(CLI::IsMember({"rollback", "abort", "off"}))
+        ->capture_default_str();
+    app.add_option("--inject-fault", cfg.inject_fault,
+                   "Testing: flip bit BIT of state field FIELD of particle ID at the start of "
+                   "step STEP, once (STEP:FIELD:ID:BIT)");
     app.add_option("--threads", cfg.threads, "OpenMP threads (default: OMP_NUM_THREADS or all)")
         ->check(CLI::Range(1, 4096));
     app.add_option(

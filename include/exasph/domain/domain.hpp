@@ -57,12 +57,15 @@ class Domain {
     }
 
     // Migration, SFC sort, local tree, halo discovery and the exchange of the kHaloSync fields.
-    // Uses exactly one collective (the global tree counts and maximum h).
-    void sync(ParticleSet<T>& ps, const Box<T>& box) {
+    // Uses exactly one collective (the global tree counts and maximum h), which also carries a
+    // per-rank alarm (e.g. corrupted state found before the step): when any rank raised one,
+    // sync stops right after the collective, changing nothing, and alarm() is true on all ranks.
+    void sync(ParticleSet<T>& ps, const Box<T>& box, bool local_alarm = false) {
         ps.resize(n_owned_); // drop last step's halos
         auto keys = compute_keys(ps, box);
         auto leaf = leaves_of(keys);
-        auto counts = global_counts(ps, leaf);
+        auto counts = global_counts(ps, leaf, local_alarm);
+        if (alarm_) return;
         asg_ = assign_leaves(counts, coll_.size());
         asg_.leaf_keys = tree_.keys();
         asg_.leaf_count = counts;
@@ -86,6 +89,8 @@ class Domain {
     }
 
     std::size_t n_owned() const { return n_owned_; }
+    // Whether some rank raised an alarm in the last sync (which then did nothing else).
+    bool alarm() const { return alarm_; }
     std::size_t n_halo() const { return plan_.n_halo; }
     const Octree<T>& local_tree() const { return local_tree_; }
     const Octree<T>& halo_tree() const { return halo_tree_; }
@@ -146,15 +151,18 @@ class Domain {
 
     // The one hot-path collective of the sync: particle count (sum) and maximum h (max) per leaf.
     std::vector<std::uint64_t> global_counts(const ParticleSet<T>& ps,
-                                             const std::vector<std::uint32_t>& leaf) {
+                                             const std::vector<std::uint32_t>& leaf,
+                                             bool local_alarm = false) {
         const std::size_t nl = tree_.num_leaves();
-        std::vector<SumMax> stat(nl);
+        std::vector<SumMax> stat(nl + 1);
+        stat[nl].max = local_alarm ? 1.0 : 0.0;
         const T* h = ps.data(Field::h);
         for (std::size_t i = 0; i < leaf.size(); ++i) {
             stat[leaf[i]].sum += 1.0;
             stat[leaf[i]].max = std::max(stat[leaf[i]].max, double(h[i]));
         }
         coll_.allreduce_sum_max(stat);
+        alarm_ = stat[nl].max > 0;
         std::vector<std::uint64_t> counts(nl);
         leaf_hmax_.resize(nl);
         for (std::size_t l = 0; l < nl; ++l) {
@@ -200,6 +208,7 @@ class Domain {
     HaloPlan plan_;
     Octree<T> local_tree_, halo_tree_;
     std::size_t n_owned_ = 0;
+    bool alarm_ = false;
 };
 
 } // namespace exasph

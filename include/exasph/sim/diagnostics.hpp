@@ -24,11 +24,15 @@ struct Diagnostics {
     double halo_ratio_mean = 0, halo_ratio_max = 0; // halos / owned over ranks
     double rho_max = 0;                             // largest particle density
     double l1_rho = -1; // mean |rho - rho_exact| (when the case has an exact solution, else -1)
+    // Scales for the conservation watchdog: total mass, sum_a m_a (|v_a . a_a| + |du_a|) (the
+    // gross rate at which energy moves between forms), sum_a m_a (|v_a| + c_a) (momentum and the
+    // scale of the pressure forces' impulses) and sum_a m_a |a_a|.
+    double mass = 0, power_abs = 0, momentum_abs = 0, force_abs = 0;
 };
 
-// Layout of the diagnostics reduction: SumMax elements 0..12 below, then six for the extent of
+// Layout of the diagnostics reduction: SumMax elements 0..16 below, then six for the extent of
 // the positions (which gives next step's box without another collective).
-inline constexpr std::size_t kDiagElements = 13;
+inline constexpr std::size_t kDiagElements = 17;
 inline constexpr std::size_t kDiagWithExtent = kDiagElements + 6;
 
 // This rank's contribution over its owned particles [0, n_owned); sums are independent of the
@@ -42,6 +46,18 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     const T *vx = ps.data(Field::vx), *vy = ps.data(Field::vy), *vz = ps.data(Field::vz);
     const T *m = ps.data(Field::m), *u = ps.data(Field::u), *nc = ps.data(Field::nc);
     const T* phi = ps.data(Field::phi);
+    const T *ax = ps.data(Field::ax), *ay = ps.data(Field::ay), *az = ps.data(Field::az),
+            *du = ps.data(Field::du), *cs = ps.data(Field::c);
+    auto w = block_sum<4>(n_owned, [&](std::size_t i) -> std::array<double, 4> {
+        const double mi = m[i];
+        const double va = double(vx[i]) * ax[i] + double(vy[i]) * ay[i] + double(vz[i]) * az[i];
+        const double v =
+            std::sqrt(double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i]);
+        const double a = std::sqrt(double(ax[i]) * ax[i] + double(ay[i]) * ay[i] +
+                                   double(az[i]) * az[i]);
+        return {mi, mi * (std::abs(va) + std::abs(double(du[i]))), mi * (v + double(cs[i])),
+                mi * a};
+    });
     auto s = block_sum<10>(n_owned, [&](std::size_t i) -> std::array<double, 10> {
         double mi = m[i];
         double v2 = double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i];
@@ -79,6 +95,7 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     }
     out[11] = {l1, rho_max};
     out[12] = {s[9], -std::numeric_limits<double>::infinity()};
+    for (int k = 0; k < 4; ++k) out[13 + k] = {w[k], -std::numeric_limits<double>::infinity()};
 }
 
 inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
@@ -86,6 +103,10 @@ inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
     d.ekin = e[0].sum;
     d.eint = e[1].sum;
     d.epot = e[12].sum;
+    d.mass = e[13].sum;
+    d.power_abs = e[14].sum;
+    d.momentum_abs = e[15].sum;
+    d.force_abs = e[16].sum;
     d.etot = d.ekin + d.eint + d.epot;
     d.momentum = {e[2].sum, e[3].sum, e[4].sum};
     d.angular_momentum = {e[5].sum, e[6].sum, e[7].sum};

@@ -71,6 +71,7 @@ inline GlassResult make_glass(const GlassParams& gp, MPI_Comm comm) {
     Config cfg;
     cfg.ng0 = gp.ng0;
     cfg.ngmax = int(gp.ng0 * 1.5);
+    cfg.on_sdc = "off"; // reset_to_rest changes the state between steps on purpose
     Simulation<double> sim(cfg, std::move(ic), comm);
     GlassResult res;
     for (res.steps = 1; res.steps <= gp.max_steps; ++res.steps) {

@@ -267,6 +267,12 @@ inline int run(Config cfg, std::ostream& out) {
         double w0 = wall_seconds();
         sim.step();
         double wstep = wall_seconds() - w0;
+        if (sim.recovered()) {
+            if (!sim.sdc_detail().empty())
+                std::cerr << "exasph: rank " << rank << ": " << sim.sdc_detail() << "\n";
+            if (root) out << "silent data corruption: " << sim.sdc_summary() << "\n";
+            continue;
+        }
         const auto& d = sim.diagnostics();
         if (!std::isfinite(d.etot)) {
             sim.particles().validate(); // names the particle when a state field went bad

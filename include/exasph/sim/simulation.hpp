@@ -12,6 +12,7 @@
 #include "exasph/gravity/gravity_solver.hpp"
 #include "exasph/sim/config.hpp"
 #include "exasph/sim/diagnostics.hpp"
+#include "exasph/sim/sdc.hpp"
 #include "exasph/sph/av_switch.hpp"
 #include "exasph/sph/hydro.hpp"
 #include "exasph/sph/integrator.hpp"
@@ -75,6 +76,9 @@ class Simulation {
                   cfg.curve),
           dt_m1_(ic.dt0), dt0_(ic.dt0), exact_(std::move(ic.exact)) {
         ps_.validate();
+        if (cfg.on_sdc != "rollback" && cfg.on_sdc != "abort" && cfg.on_sdc != "off")
+            throw input_error("--on-sdc must be abort, rollback or off, got " + cfg.on_sdc, true);
+        if (!cfg.inject_fault.empty()) fault_ = parse_fault(cfg.inject_fault);
         const double G = cfg.G >= 0 ? cfg.G : ic.G;
         if (G > 0) {
             if (box_.periodic[0] || box_.periodic[1] || box_.periodic[2])
@@ -95,12 +99,23 @@ class Simulation {
         }
         diagnose(0.0);
         if (gravity_) add_initial_potential_energy(comm);
+        mass0_ = diag_.mass;
+        if (sdc_on()) guard_.seal(ps_, n_owned());
     }
 
     void step() {
         timer_.begin_step();
         timer_.start();
-        domain_.sync(ps_, box_);
+        recovered_ = false;
+        if (fault_.step == step_ + 1 && !fault_done_) {
+            inject_fault(ps_, n_owned(), fault_); // on the rank that owns the particle
+            fault_done_ = true;                   // once: a rollback replays the step cleanly
+        }
+        const bool alarm = sdc_on() && !verify_state();
+        domain_.sync(ps_, box_, alarm);
+        if (domain_.alarm())
+            return recover("the state check before step " + std::to_string(step_ + 1));
+        if (pending_.valid) rollback_ = std::move(pending_), pending_.valid = false;
         timer_.stop(kSync);
         find_neighbours();
         timer_.stop(kNeighbours);
@@ -130,10 +145,30 @@ class Simulation {
         time_ += dt;
         dt_m1_ = dt;
         ++step_;
+        const Diagnostics before = diag_;
         diagnose(dt);
+        if (sdc_on()) {
+            std::string why = conservation_violation(watchdog_totals(before),
+                                                     watchdog_totals(diag_), mass0_, !gravity_);
+            if (!why.empty()) {
+                if (domain_.rank() == 0) sdc_detail_ = "watchdog: " + why;
+                return recover("the conservation watchdog after step " + std::to_string(step_));
+            }
+            guard_.seal(ps_, n_owned());
+            press_ok_ = true;
+        }
         timer_.stop(kDiagnostics);
         timer_.end_step();
     }
+
+    // Silent-data-corruption handling (issue 8). How many times the run was rolled back, and
+    // whether the last step() ended in a rollback instead of a step (then diagnostics() are
+    // those of the step rolled back to, and the steps after it are computed again).
+    std::int64_t recoveries() const { return recoveries_; }
+    bool recovered() const { return recovered_; }
+    // This rank's description of the last detection ("" if another rank detected it).
+    const std::string& sdc_detail() const { return sdc_detail_; }
+    const std::string& sdc_summary() const { return sdc_summary_; }
 
     // Raises a control flag on this rank; after the next step every rank sees it (flag()).
     void raise_flag(ControlFlag f) { local_flags_[f] = 1.0; }
@@ -286,6 +321,66 @@ class Simulation {
         for (std::int64_t i = 0; i < n; ++i) xm[i] = T(std::pow(double(m[i] / rho[i]), pw));
     }
 
+    bool sdc_on() const {
+        return cfg_.on_sdc != "off";
+    }
+
+    // Checks the owned state at rest (hashes sealed at the end of the last step, physics
+    // invariants); keeps a rollback point every sdc_rollback_every steps (committed once the sync
+    // has confirmed that no rank found a problem). Returns false on corruption.
+    bool verify_state() {
+        sdc_detail_ =
+            guard_.check(ps_, n_owned(), box_, dt_m1_, press_ok_, eos_.kind == EosKind::ideal_gas);
+        if (!sdc_detail_.empty()) return false;
+        if (cfg_.on_sdc == "rollback" && step_ % std::max(cfg_.sdc_rollback_every, 1) == 0) {
+            pending_.ps = ps_;
+            pending_.ps.resize(n_owned());
+            pending_.rs = restart_state();
+            pending_.box = box_;
+            pending_.diag = diag_;
+            pending_.valid = true;
+        }
+        return true;
+    }
+
+    // All ranks: after a detection, roll back to the last verified state (or abort).
+    void recover(const std::string& where) {
+        pending_.valid = false;
+        ++recoveries_;
+        const bool can = cfg_.on_sdc == "rollback" && rollback_.valid && recoveries_ <= 100 &&
+                         rollback_.rs.step < step_ + 1;
+        std::string detail = sdc_detail_.empty() ? "found on another rank" : sdc_detail_;
+        if (!can)
+            throw Error("silent data corruption detected by " + where + " (" + detail + "); " +
+                            (cfg_.on_sdc == "abort" ? "aborting (--on-sdc abort)"
+                                                    : "no verified state to roll back to"),
+                        1, true);
+        sdc_summary_ = "corruption detected by " + where + " (" + detail +
+                       "): rolled back to step " + std::to_string(rollback_.rs.step);
+        ps_ = rollback_.ps;
+        box_ = rollback_.box;
+        time_ = rollback_.rs.time;
+        step_ = rollback_.rs.step;
+        dt_m1_ = rollback_.rs.dt_m1;
+        diag_ = rollback_.diag;
+        domain_.restore(ps_, rollback_.rs.leaf_keys);
+        guard_.seal(ps_, n_owned());
+        press_ok_ = false; // accelerations are not part of the rollback point
+        recovered_ = true;
+        timer_.end_step();
+    }
+
+    static WatchdogTotals watchdog_totals(const Diagnostics& d) {
+        return {d.mass,
+                d.etot,
+                d.epot,
+                d.power_abs,
+                d.momentum_abs,
+                d.force_abs,
+                d.dt,
+                {d.momentum[0], d.momentum[1], d.momentum[2]}};
+    }
+
     // The first diagnostics row needs the potential energy of the initial positions, before any
     // step has computed forces: a throw-away domain and gravity pass over a copy of the particles
     // (start-up only; the run's own domain is left as it is, so restarts stay exact).
@@ -354,6 +449,21 @@ class Simulation {
     std::array<double, kNumControlFlags> local_flags_{}, flags_{};
     ExactDensity exact_;
     std::optional<GravitySolver<T>> gravity_;
+    // Silent-data-corruption defences (sim/sdc.hpp).
+    struct RollbackPoint {
+        ParticleSet<T> ps;
+        RestartState rs;
+        Box<T> box;
+        Diagnostics diag;
+        bool valid = false;
+    };
+    StateGuard<T> guard_;
+    RollbackPoint rollback_, pending_;
+    FaultSpec fault_;
+    bool fault_done_ = false, press_ok_ = false, recovered_ = false;
+    double mass0_ = 0;
+    std::int64_t recoveries_ = 0;
+    std::string sdc_detail_, sdc_summary_;
 };
 
 } // namespace exasph

@@ -1,0 +1,226 @@
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "exasph/particles/particle_set.hpp"
+#include "exasph/util/box.hpp"
+#include "exasph/util/checksum.hpp"
+#include "exasph/util/error.hpp"
+
+namespace exasph {
+
+// Silent-data-corruption defences for particle state at rest between steps (issue 8).
+
+// --inject-fault STEP:FIELD:ID:BIT: flip bit BIT (0 = least significant) of FIELD of the
+// particle with id ID at the start of step STEP (before the state is verified), once.
+struct FaultSpec {
+    std::int64_t step = -1; // < 0: none
+    Field field = Field::x;
+    std::uint64_t id = 0;
+    int bit = 0;
+};
+
+inline FaultSpec parse_fault(const std::string& text) {
+    FaultSpec f;
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i <= text.size(); ++i)
+        if (i == text.size() || text[i] == ':') {
+            parts.push_back(text.substr(start, i - start));
+            start = i + 1;
+        }
+    const std::string usage = "--inject-fault " + text + ": expected STEP:FIELD:ID:BIT";
+    if (parts.size() != 4) throw input_error(usage, true);
+    bool found = false;
+    for (const auto& info : kFieldTable)
+        if (info.name == parts[1] && (info.roles & kState)) f.field = info.field, found = true;
+    if (!found) throw input_error(usage + " with FIELD a state field (x, vx, u, h, m, ...)", true);
+    try {
+        std::size_t used = 0;
+        f.step = std::stoll(parts[0], &used);
+        if (used != parts[0].size() || f.step < 1) throw std::invalid_argument("step");
+        f.id = std::stoull(parts[2], &used);
+        if (used != parts[2].size()) throw std::invalid_argument("id");
+        f.bit = std::stoi(parts[3], &used);
+        if (used != parts[3].size() || f.bit < 0 || f.bit >= 64) throw std::invalid_argument("b");
+    } catch (const std::exception&) {
+        throw input_error(usage + " (STEP >= 1, BIT in 0..63 for double)", true);
+    }
+    return f;
+}
+
+// Flips the bit in this rank's copy of the particle, if it owns it; returns whether it did.
+template <class T>
+bool inject_fault(ParticleSet<T>& ps, std::size_t n, const FaultSpec& f) {
+    static_assert(sizeof(T) == 8 || sizeof(T) == 4);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (ps.id[i] != f.id) continue;
+        T& v = ps[f.field][i];
+        if constexpr (sizeof(T) == 8) {
+            std::uint64_t b;
+            std::memcpy(&b, &v, 8);
+            b ^= std::uint64_t(1) << f.bit;
+            std::memcpy(&v, &b, 8);
+        } else {
+            std::uint32_t b;
+            std::memcpy(&b, &v, 4);
+            b ^= std::uint32_t(1) << (f.bit % 32);
+            std::memcpy(&v, &b, 4);
+        }
+        return true;
+    }
+    return false;
+}
+
+// Hash of one particle's id and state fields (bit patterns, in field-list order).
+template <class T>
+std::uint64_t particle_state_hash(const ParticleSet<T>& ps, std::size_t i,
+                                  const std::vector<Field>& fields) {
+    HashChain h(ps.id[i]);
+    for (Field f : fields) h.add_float(ps[f][i]);
+    return h.value();
+}
+
+// Guards the owned particles' state between steps: seal() records a hash per particle at the end
+// of a step, check() (start of the next step, same order) finds any bit that changed in between,
+// and the physics invariants below catch corruption that happened before the seal.
+template <class T>
+class StateGuard {
+  public:
+    StateGuard() : fields_(fields_with_role(kState)) {}
+
+    void seal(const ParticleSet<T>& ps, std::size_t n) {
+        hashes_.resize(n);
+        const auto nn = std::int64_t(n);
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < nn; ++i) hashes_[i] = particle_state_hash(ps, i, fields_);
+        sealed_ = true;
+    }
+    void unseal() {
+        sealed_ = false;
+    }
+
+    // Empty when the state is consistent, else what is wrong (the first particle found).
+    // `dt` and the accelerations are those of the last step (press_ok: they are valid);
+    // `u_positive`: u >= 0 is an invariant (ideal gas, not the Tait EOS that ignores u).
+    std::string check(const ParticleSet<T>& ps, std::size_t n, const Box<T>& box, double dt,
+                      bool press_ok, bool u_positive) const {
+        const auto nn = std::int64_t(n);
+        std::int64_t bad_hash = nn, bad_physics = nn;
+        if (sealed_ && hashes_.size() == n) {
+#pragma omp parallel for schedule(static) reduction(min : bad_hash)
+            for (std::int64_t i = 0; i < nn; ++i)
+                if (particle_state_hash(ps, i, fields_) != hashes_[i] && i < bad_hash) bad_hash = i;
+        }
+        std::string why;
+#pragma omp parallel for schedule(static) reduction(min : bad_physics)
+        for (std::int64_t i = 0; i < nn; ++i)
+            if (!physics_violation(ps, i, box, dt, press_ok, u_positive).empty() && i < bad_physics)
+                bad_physics = i;
+        if (bad_hash < nn)
+            why = "particle id " + std::to_string(ps.id[bad_hash]) +
+                  ": state changed between steps (hash mismatch)";
+        if (bad_physics < nn)
+            why += std::string(why.empty() ? "" : "; ") + "particle id " +
+                   std::to_string(ps.id[bad_physics]) + ": " +
+                   physics_violation(ps, bad_physics, box, dt, press_ok, u_positive);
+        return why;
+    }
+
+    // The first invariant particle i breaks (for the report), or "" if none.
+    static std::string physics_violation(const ParticleSet<T>& ps, std::size_t i, const Box<T>& box,
+                                         double dt, bool press_ok, bool u_positive) {
+        for (const auto& info : kFieldTable)
+            if ((info.roles & kState) && !std::isfinite(ps[info.field][i]))
+                return std::string(info.name) + " is not finite";
+        if (!(ps[Field::m][i] > T(0))) return "m is not positive";
+        if (!(ps[Field::h][i] > T(0))) return "h is not positive";
+        if (u_positive && ps[Field::u][i] < T(0)) return "u is negative";
+        const Field pos[3] = {Field::x, Field::y, Field::z};
+        for (int d = 0; d < 3; ++d) {
+            const T x = ps[pos[d]][i];
+            if (x < box.lo[d] || x > box.hi[d]) return "position outside the box";
+        }
+        if (press_ok && !press_consistent(ps, i, dt)) return "x, x_m1, v, a disagree (Press)";
+        return "";
+    }
+
+  private:
+    // After a Press update (sph/integrator.hpp), x - x_m1 = dt (v - a dt / 2) up to round-off
+    // in each axis (a periodic wrap moves x and x_m1 together).
+    static bool press_consistent(const ParticleSet<T>& ps, std::size_t i, double dt) {
+        constexpr double eps = std::numeric_limits<T>::epsilon();
+        const Field pos[3] = {Field::x, Field::y, Field::z};
+        const Field prev[3] = {Field::x_m1, Field::y_m1, Field::z_m1};
+        const Field vel[3] = {Field::vx, Field::vy, Field::vz};
+        const Field acc[3] = {Field::ax, Field::ay, Field::az};
+        for (int d = 0; d < 3; ++d) {
+            const double x = ps[pos[d]][i], xm = ps[prev[d]][i], v = ps[vel[d]][i],
+                         a = ps[acc[d]][i];
+            const double residual = std::abs((x - xm) - dt * (v - 0.5 * a * dt));
+            const double allowed =
+                16 * eps * (std::abs(x) + std::abs(xm) + dt * (std::abs(v) + std::abs(a) * dt));
+            if (!(residual <= allowed)) return false;
+        }
+        return true;
+    }
+
+    std::vector<Field> fields_;
+    std::vector<std::uint64_t> hashes_;
+    bool sealed_ = false;
+};
+
+// Conservation watchdog (issue 8): compares a step's totals with the previous step and the
+// start. Mass never changes (round-off of the sum only); momentum is conserved to round-off by
+// the symmetric hydro pairs (not by tree gravity, nor by the periodic minimum image for angular
+// momentum, which is therefore not checked); the total energy may change in one step by the
+// time-integration error, a small fraction of the energy moved between forms in that step,
+// dt * sum m (|v.a| + |du|). Returns "" or what was violated.
+struct WatchdogTotals {
+    double mass, etot, epot, power_abs, momentum_abs, force_abs, dt;
+    double momentum[3];
+};
+
+inline constexpr double kWatchdogEnergyBudget =
+    0.25; // clean runs: <= 0.07 after step 1 // of dt * gross power (see docs/resilience)
+
+inline std::string conservation_violation(const WatchdogTotals& prev, const WatchdogTotals& now,
+                                          double mass0, bool check_momentum) {
+    auto rel = [](double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); };
+    auto num = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.3e", v);
+        return std::string(buf);
+    };
+    if (rel(now.mass, mass0) > 1e-12)
+        return "total mass changed by " + num(rel(now.mass, mass0)) + " (relative)";
+    // The first step after a start or a rollback has no previous accelerations (power 0) and
+    // carries the integrator's start-up error (up to 3/4 of dt * power on clean runs); with
+    // gravity the potential energy also moves with the adaptive softening and the tree
+    // (~5e-4 of |E_pot| in the first steps of Evrard).
+    const double factor = prev.power_abs > 0 ? kWatchdogEnergyBudget : 1.5;
+    const double budget = factor * now.dt * std::max(now.power_abs, prev.power_abs) +
+                          1e-12 * std::abs(now.etot) + 1e-3 * std::abs(now.epot);
+    if (std::abs(now.etot - prev.etot) > budget)
+        return "total energy changed by " + num(now.etot - prev.etot) + " in one step (budget " +
+               num(budget) + ")";
+    if (check_momentum) {
+        const double dp =
+            std::hypot(now.momentum[0] - prev.momentum[0], now.momentum[1] - prev.momentum[1],
+                       now.momentum[2] - prev.momentum[2]);
+        // Round-off scale: the momenta and the impulses of the step.
+        const double scale =
+            std::max(now.momentum_abs, prev.momentum_abs) + now.dt * now.force_abs;
+        if (dp > 1e-10 * scale + 1e-300)
+            return "linear momentum changed by " + num(dp) + " in one step (scale " + num(scale) +
+                   ")";
+    }
+    return "";
+}
+
+} // namespace exasph
