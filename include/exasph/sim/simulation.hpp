@@ -169,6 +169,8 @@ class Simulation {
     // This rank's description of the last detection ("" if another rank detected it).
     const std::string& sdc_detail() const { return sdc_detail_; }
     const std::string& sdc_summary() const { return sdc_summary_; }
+    // The step before which (state check) or in which (watchdog) the last detection happened.
+    std::int64_t sdc_detection_step() const { return sdc_step_; }
 
     // Raises a control flag on this rank; after the next step every rank sees it (flag()).
     void raise_flag(ControlFlag f) { local_flags_[f] = 1.0; }
@@ -347,6 +349,7 @@ class Simulation {
     void recover(const std::string& where) {
         pending_.valid = false;
         ++recoveries_;
+        sdc_step_ = step_ + (where.find("watchdog") == std::string::npos ? 1 : 0);
         const bool can = cfg_.on_sdc == "rollback" && rollback_.valid && recoveries_ <= 100 &&
                          rollback_.rs.step < step_ + 1;
         std::string detail = sdc_detail_.empty() ? "found on another rank" : sdc_detail_;
@@ -462,7 +465,7 @@ class Simulation {
     FaultSpec fault_;
     bool fault_done_ = false, press_ok_ = false, recovered_ = false;
     double mass0_ = 0;
-    std::int64_t recoveries_ = 0;
+    std::int64_t recoveries_ = 0, sdc_step_ = -1;
     std::string sdc_detail_, sdc_summary_;
 };
 

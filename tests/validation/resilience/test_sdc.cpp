@@ -1,0 +1,180 @@
+// Issue 8, acceptance 1 and 2: clean runs raise no alarm; single-bit flips injected into x, v, u,
+// h, m of Sedov -n 20 (8000 particles, lattice) are detected, and with rollback the run ends
+// bitwise equal to the clean run. A flip is "harmful" when, undetected (--on-sdc off), it changes
+// some particle's final rho, v or u by more than 1e-3 (v relative to the largest speed) or the
+// total mass, energy or momentum by more than 1e-6 relative, or it crashes the run.
+// Set EXASPH_SDC_CSV=FILE to keep one row per injection (docs/resilience.md is made from it).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include "exasph/sim/cases.hpp"
+#include "exasph/sim/simulation.hpp"
+
+using namespace exasph;
+
+namespace {
+
+struct State {
+    double rho, vx, vy, vz, u;
+};
+
+struct Outcome {
+    bool crashed = false;
+    std::string error;
+    std::map<std::uint64_t, State> particles;
+    double mass = 0, etot = 0, p[3] = {0, 0, 0}, pabs = 0;
+    std::int64_t recoveries = 0, detected_at = -1;
+    std::string summary;
+};
+
+Outcome run(const Config& cfg, int steps) {
+    Outcome o;
+    try {
+        Simulation<double> sim(cfg, make_case<double>(cfg, MPI_COMM_SELF), MPI_COMM_SELF);
+        while (sim.step_count() < steps) sim.step();
+        const auto& ps = sim.particles();
+        for (std::size_t i = 0; i < sim.n_owned(); ++i)
+            o.particles[ps.id[i]] = {ps[Field::rho][i], ps[Field::vx][i], ps[Field::vy][i],
+                                     ps[Field::vz][i], ps[Field::u][i]};
+        const auto& d = sim.diagnostics();
+        o.mass = d.mass;
+        o.etot = d.etot;
+        for (int k = 0; k < 3; ++k) o.p[k] = d.momentum[k];
+        o.pabs = d.momentum_abs;
+        o.recoveries = sim.recoveries();
+        o.detected_at = sim.sdc_detection_step();
+        o.summary = sim.sdc_summary();
+    } catch (const std::exception& e) {
+        o.crashed = true;
+        o.error = e.what();
+    }
+    return o;
+}
+
+// Worst change against the clean run (the harm criterion's quantities).
+bool harmful(const Outcome& o, const Outcome& clean) {
+    if (o.crashed || o.particles.size() != clean.particles.size()) return true;
+    double vmax = 0;
+    for (const auto& [id, s] : clean.particles)
+        vmax = std::max({vmax, std::abs(s.vx), std::abs(s.vy), std::abs(s.vz)});
+    for (const auto& [id, c] : clean.particles) {
+        auto it = o.particles.find(id);
+        if (it == o.particles.end()) return true;
+        const State& s = it->second;
+        if (!(std::abs(s.rho - c.rho) <= 1e-3 * std::abs(c.rho))) return true;
+        if (!(std::abs(s.u - c.u) <= 1e-3 * std::abs(c.u))) return true;
+        for (double dv : {s.vx - c.vx, s.vy - c.vy, s.vz - c.vz})
+            if (!(std::abs(dv) <= 1e-3 * vmax)) return true;
+    }
+    auto rel = [](double a, double b, double scale) { return std::abs(a - b) / scale; };
+    if (!(rel(o.mass, clean.mass, clean.mass) <= 1e-6)) return true;
+    if (!(rel(o.etot, clean.etot, std::abs(clean.etot)) <= 1e-6)) return true;
+    for (int k = 0; k < 3; ++k)
+        if (!(rel(o.p[k], clean.p[k], clean.pabs) <= 1e-6)) return true;
+    return false;
+}
+
+bool bitwise_equal(const Outcome& a, const Outcome& b) {
+    if (a.crashed || b.crashed || a.particles.size() != b.particles.size()) return false;
+    for (const auto& [id, s] : a.particles) {
+        const State& t = b.particles.at(id);
+        if (s.rho != t.rho || s.vx != t.vx || s.vy != t.vy || s.vz != t.vz || s.u != t.u)
+            return false;
+    }
+    return a.etot == b.etot;
+}
+
+Config sedov20() {
+    Config cfg;
+    cfg.init = "sedov";
+    cfg.side = 20;
+    cfg.lattice = true;
+    return cfg;
+}
+
+} // namespace
+
+TEST(Sdc, CleanRunsRaiseNoAlarm) {
+    for (const char* init : {"square-patch", "sedov", "noh", "evrard"}) {
+        Config cfg;
+        cfg.init = init;
+        cfg.side = 16;
+        cfg.lattice = true;
+        Outcome o = run(cfg, 40);
+        EXPECT_FALSE(o.crashed) << init << ": " << o.error;
+        EXPECT_EQ(o.recoveries, 0) << init << ": " << o.summary;
+        std::printf("%s -n 16, 40 steps: %lld alarms\n", init, (long long)o.recoveries);
+    }
+}
+
+TEST(Sdc, InjectedBitFlipsAreDetectedAndRolledBack) {
+    const int steps = 6, injections = 300;
+    Config clean_cfg = sedov20();
+    const Outcome clean = run(clean_cfg, steps);
+    ASSERT_FALSE(clean.crashed) << clean.error;
+    ASSERT_EQ(clean.recoveries, 0) << clean.summary;
+    const Field fields[] = {Field::x,  Field::y,  Field::z, Field::vx, Field::vy,
+                            Field::vz, Field::u, Field::h, Field::m};
+    std::mt19937_64 rng(2026);
+    std::ofstream csv;
+    if (const char* path = std::getenv("EXASPH_SDC_CSV")) {
+        csv.open(path);
+        csv << "step,field,id,bit,harmful,detected,detection_delay,rollback_equal,mechanism\n";
+    }
+    int n_harmful = 0, n_harmful_detected = 0, n_detected = 0, n_rollback_equal = 0;
+    for (int k = 0; k < injections; ++k) {
+        const int step = 2 + int(rng() % 3); // 2..4
+        const Field f = fields[rng() % 9];
+        const std::uint64_t id = rng() % 8000;
+        const int bit = int(rng() % 64);
+        const std::string spec = std::to_string(step) + ":" +
+                                 std::string(field_info(f).name) + ":" + std::to_string(id) + ":" +
+                                 std::to_string(bit);
+        Config off = sedov20();
+        off.on_sdc = "off";
+        off.inject_fault = spec;
+        const bool harm = harmful(run(off, steps), clean);
+        Config on = sedov20();
+        on.on_sdc = "rollback";
+        on.sdc_rollback_every = 2;
+        on.inject_fault = spec;
+        const Outcome guarded = run(on, steps);
+        const bool detected = guarded.recoveries > 0 && guarded.detected_at >= step &&
+                              guarded.detected_at <= step + 2;
+        const bool equal = bitwise_equal(guarded, clean);
+        n_harmful += harm;
+        n_harmful_detected += harm && detected;
+        n_detected += detected;
+        n_rollback_equal += equal;
+        // Which defences fired: the hash, a physics invariant (reported after it), the watchdog.
+        const std::string& sm = guarded.summary;
+        const bool by_hash = sm.find("hash mismatch") != std::string::npos;
+        const bool by_invariant = guarded.recoveries > 0 &&
+                                  sm.find("watchdog") == std::string::npos &&
+                                  (!by_hash || sm.find("mismatch); particle") != std::string::npos);
+        const std::string mech = std::string(by_hash ? "hash" : "") +
+                                 (by_hash && by_invariant ? "+" : "") +
+                                 (by_invariant ? "invariant" : "") +
+                                 (sm.find("watchdog") != std::string::npos ? "watchdog" : "");
+        if (csv)
+            csv << step << "," << field_info(f).name << "," << id << "," << bit << "," << harm
+                << "," << detected << "," << (detected ? guarded.detected_at - step : -1) << ","
+                << equal << "," << mech << "\n";
+        if (harm && !detected) std::printf("harmful flip not detected: %s\n", spec.c_str());
+        if (!equal)
+            std::printf("rollback run differs from the clean run: %s (%s)\n", spec.c_str(),
+                        guarded.crashed ? guarded.error.c_str() : guarded.summary.c_str());
+    }
+    std::printf("%d injections: %d harmful, %d of them detected within 2 steps; %d detected in "
+                "all; %d runs with rollback equal to the clean run (bitwise)\n",
+                injections, n_harmful, n_harmful_detected, n_detected, n_rollback_equal);
+    EXPECT_GE(n_harmful_detected, 0.99 * n_harmful);
+    EXPECT_EQ(n_rollback_equal, injections);
+}
