@@ -24,6 +24,7 @@ Outcome run_square_patch(int threads) {
     Simulation<double> sim(cfg, make_case<double>(cfg));
     sim.set_end_time(0.02);
     while (sim.time() < 0.02) sim.step();
+    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary(); // a clean run raises no alarm
     const auto& ps = sim.particles();
     Outcome o{sim.diagnostics().angular_momentum[2], sim.diagnostics().etot, 0, 0, true};
     for (std::size_t i = 0; i < ps.size(); ++i) {
