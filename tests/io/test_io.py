@@ -4,7 +4,8 @@ XDMF sidecar, and bad input. Run by CTest as
 
     test_io.py TEST --exe build/exasph --mpirun "mpirun --oversubscribe [--allow-run-as-root]"
 
-with TEST one of: restart, sigkill, sigterm, snapshot, bad_input, corrupt, auto_interval.
+with TEST one of: restart, sigkill, sigterm, snapshot, bad_input, corrupt, auto_interval,
+sdc_mpi.
 Exits non-zero on failure.
 """
 import argparse
@@ -313,10 +314,26 @@ def test_auto_interval(r):
         assert needle in p.stderr, p.stderr
 
 
+def test_sdc_mpi(r):
+    """Issue 8: a bit flipped on one rank of two is detected there, both ranks roll back, and
+    the run ends bitwise equal to the clean run; --on-sdc abort ends it with exit code 1."""
+    args = ["--init", "sedov", "-n", 16, "--lattice", "-s", 14, "-w", 14, "--threads", 1]
+    r.run(2, *args, "--out", r.work / "clean")
+    p = r.run(2, *args, "--inject-fault", "12:u:1234:55", "--out", r.work / "flipped")
+    assert "rolled back to step 10" in p.stdout, p.stdout
+    assert "particle id 1234: state changed between steps" in p.stderr, p.stderr
+    compare(r.work / "clean" / "snapshot_000014.h5", r.work / "flipped" / "snapshot_000014.h5",
+            0.0)
+    p = r.run(2, *args, "--inject-fault", "12:x:99:62", "--on-sdc", "abort",
+              "--out", r.work / "abort", expect=1)
+    assert "silent data corruption detected" in p.stderr, p.stderr
+    print("2 ranks: flip detected, rolled back, final state equal; abort mode exits 1")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("test", choices=["restart", "sigkill", "sigterm", "snapshot", "bad_input",
-                                     "corrupt", "auto_interval"])
+                                     "corrupt", "auto_interval", "sdc_mpi"])
     ap.add_argument("--exe", required=True)
     ap.add_argument("--mpirun", required=True)
     args = ap.parse_args()
