@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -76,6 +77,29 @@ bool inject_fault(ParticleSet<T>& ps, std::size_t n, const FaultSpec& f) {
     }
     return false;
 }
+
+// Copy of the owned particles' ids and state fields (what a checkpoint holds): the rollback
+// point. Derived fields are not kept; a step recomputes them before use, as after a restart.
+template <class T>
+struct StateCopy {
+    std::vector<std::uint64_t> id;
+    std::vector<std::vector<T>> fields; // in the order of fields_with_role(kState)
+
+    void save(const ParticleSet<T>& ps, std::size_t n) {
+        const auto state = fields_with_role(kState);
+        id.assign(ps.id.begin(), ps.id.begin() + std::ptrdiff_t(n));
+        fields.resize(state.size());
+        for (std::size_t k = 0; k < state.size(); ++k)
+            fields[k].assign(ps[state[k]].begin(), ps[state[k]].begin() + std::ptrdiff_t(n));
+    }
+    void restore(ParticleSet<T>& ps) const {
+        const auto state = fields_with_role(kState);
+        ps.resize(id.size());
+        std::copy(id.begin(), id.end(), ps.id.begin());
+        for (std::size_t k = 0; k < state.size(); ++k)
+            std::copy(fields[k].begin(), fields[k].end(), ps[state[k]].begin());
+    }
+};
 
 // Hash of one particle's id and state fields (bit patterns, in field-list order).
 template <class T>
@@ -214,8 +238,7 @@ inline std::string conservation_violation(const WatchdogTotals& prev, const Watc
             std::hypot(now.momentum[0] - prev.momentum[0], now.momentum[1] - prev.momentum[1],
                        now.momentum[2] - prev.momentum[2]);
         // Round-off scale: the momenta and the impulses of the step.
-        const double scale =
-            std::max(now.momentum_abs, prev.momentum_abs) + now.dt * now.force_abs;
+        const double scale = std::max(now.momentum_abs, prev.momentum_abs) + now.dt * now.force_abs;
         if (dp > 1e-10 * scale + 1e-300)
             return "linear momentum changed by " + num(dp) + " in one step (scale " + num(scale) +
                    ")";

@@ -335,8 +335,7 @@ class Simulation {
             guard_.check(ps_, n_owned(), box_, dt_m1_, press_ok_, eos_.kind == EosKind::ideal_gas);
         if (!sdc_detail_.empty()) return false;
         if (cfg_.on_sdc == "rollback" && step_ % std::max(cfg_.sdc_rollback_every, 1) == 0) {
-            pending_.ps = ps_;
-            pending_.ps.resize(n_owned());
+            pending_.state.save(ps_, n_owned());
             pending_.rs = restart_state();
             pending_.box = box_;
             pending_.diag = diag_;
@@ -360,7 +359,7 @@ class Simulation {
                         1, true);
         sdc_summary_ = "corruption detected by " + where + " (" + detail +
                        "): rolled back to step " + std::to_string(rollback_.rs.step);
-        ps_ = rollback_.ps;
+        rollback_.state.restore(ps_);
         box_ = rollback_.box;
         time_ = rollback_.rs.time;
         step_ = rollback_.rs.step;
@@ -374,14 +373,8 @@ class Simulation {
     }
 
     static WatchdogTotals watchdog_totals(const Diagnostics& d) {
-        return {d.mass,
-                d.etot,
-                d.epot,
-                d.power_abs,
-                d.momentum_abs,
-                d.force_abs,
-                d.dt,
-                {d.momentum[0], d.momentum[1], d.momentum[2]}};
+        return {d.mass,         d.etot,      d.epot, d.power_abs,
+                d.momentum_abs, d.force_abs, d.dt,   {d.momentum[0], d.momentum[1], d.momentum[2]}};
     }
 
     // The first diagnostics row needs the potential energy of the initial positions, before any
@@ -454,7 +447,7 @@ class Simulation {
     std::optional<GravitySolver<T>> gravity_;
     // Silent-data-corruption defences (sim/sdc.hpp).
     struct RollbackPoint {
-        ParticleSet<T> ps;
+        StateCopy<T> state;
         RestartState rs;
         Box<T> box;
         Diagnostics diag;
