@@ -53,8 +53,8 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
         const double va = double(vx[i]) * ax[i] + double(vy[i]) * ay[i] + double(vz[i]) * az[i];
         const double v =
             std::sqrt(double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i]);
-        const double a = std::sqrt(double(ax[i]) * ax[i] + double(ay[i]) * ay[i] +
-                                   double(az[i]) * az[i]);
+        const double a =
+            std::sqrt(double(ax[i]) * ax[i] + double(ay[i]) * ay[i] + double(az[i]) * az[i]);
         return {mi, mi * (std::abs(va) + std::abs(double(du[i]))), mi * (v + double(cs[i])),
                 mi * a};
     });

@@ -120,7 +120,7 @@ TEST(Sdc, InjectedBitFlipsAreDetectedAndRolledBack) {
     const Outcome clean = run(clean_cfg, steps);
     ASSERT_FALSE(clean.crashed) << clean.error;
     ASSERT_EQ(clean.recoveries, 0) << clean.summary;
-    const Field fields[] = {Field::x,  Field::y,  Field::z, Field::vx, Field::vy,
+    const Field fields[] = {Field::x,  Field::y, Field::z, Field::vx, Field::vy,
                             Field::vz, Field::u, Field::h, Field::m};
     std::mt19937_64 rng(2026);
     std::ofstream csv;
@@ -134,9 +134,8 @@ TEST(Sdc, InjectedBitFlipsAreDetectedAndRolledBack) {
         const Field f = fields[rng() % 9];
         const std::uint64_t id = rng() % 8000;
         const int bit = int(rng() % 64);
-        const std::string spec = std::to_string(step) + ":" +
-                                 std::string(field_info(f).name) + ":" + std::to_string(id) + ":" +
-                                 std::to_string(bit);
+        const std::string spec = std::to_string(step) + ":" + std::string(field_info(f).name) +
+                                 ":" + std::to_string(id) + ":" + std::to_string(bit);
         Config off = sedov20();
         off.on_sdc = "off";
         off.inject_fault = spec;
