@@ -9,16 +9,22 @@
 
 namespace exasph {
 
+// What every rank knows about a global leaf (and every node knows about itself): multipole, tight
+// box and largest h of its particles (empty: mass 0).
+template <class T>
+struct LeafSummary {
+    Multipole mp;
+    T lo[3] = {0, 0, 0};
+    T hi[3] = {0, 0, 0};
+    T hmax = 0;
+};
+
 // One node of the gravity tree: its multipole, the tight box and largest h of its particles, and
 // the squared distance from the centre of mass inside which it must be opened.
 // Kinds: first_child >= 0: inner node; else end > begin: leaf with sources [begin, end); else a
 // node whose particles are not on this rank (a remote top-tree leaf that no walk here opens).
 template <class T>
-struct GravityNode {
-    Multipole mp;
-    T lo[3] = {0, 0, 0};
-    T hi[3] = {0, 0, 0};
-    T hmax = 0;
+struct GravityNode : LeafSummary<T> {
     double open2 = 0;
     std::int32_t first_child = -1;
     std::uint32_t num_children = 0;

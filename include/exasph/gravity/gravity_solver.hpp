@@ -217,17 +217,19 @@ class GravitySolver {
             if (o == me) {
                 if (g == asg.first_leaf[me]) self_offset = pos;
                 for (std::uint32_t i = own[g - asg.first_leaf[me]].begin;
-                     i < own[g - asg.first_leaf[me]].end; ++i, ++pos)
+                     i < own[g - asg.first_leaf[me]].end; ++i, ++pos) {
                     for (int k = 0; k < 5; ++k) dst[k][pos] = f[k][i];
+                    src_.keys[pos] = keys_[i]; // computed by owned_leaf_ranges
+                }
             } else if (need[g]) {
                 const double* b = received[o].data();
-                for (std::uint64_t c = 0; c < asg.leaf_count[g]; ++c, ++pos, cursor[o] += 5)
+                for (std::uint64_t c = 0; c < asg.leaf_count[g]; ++c, ++pos, cursor[o] += 5) {
                     for (int k = 0; k < 5; ++k) dst[k][pos] = T(b[cursor[o] + k]);
+                    src_.keys[pos] = sfc_key(dst[0][pos], dst[1][pos], dst[2][pos], box, curve);
+                }
             }
             src_end_[g] = std::uint32_t(pos);
         }
-        for (std::size_t i = 0; i < total; ++i)
-            src_.keys[i] = sfc_key(src_.x[i], src_.y[i], src_.z[i], box, curve);
         return self_offset;
     }
 

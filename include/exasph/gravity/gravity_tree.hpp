@@ -24,15 +24,6 @@ struct GravitySources {
     }
 };
 
-// What every rank knows about a global leaf: multipole, tight box, largest h (empty: mass 0).
-template <class T>
-struct LeafSummary {
-    Multipole mp;
-    T lo[3] = {0, 0, 0};
-    T hi[3] = {0, 0, 0};
-    T hmax = 0;
-};
-
 // Summary of the particles [b, e) of the arrays x, y, z, m, h.
 template <class T>
 LeafSummary<T> summarise_particles(const T* x, const T* y, const T* z, const T* m, const T* h,
@@ -81,12 +72,8 @@ class GravityTree {
             nd.first_child = tn[k].first_child;
             nd.num_children = tn[k].num_children;
             if (nd.first_child < 0) {
-                const auto& s = leaves[tn[k].begin];
                 leaf_node_[tn[k].begin] = std::uint32_t(k);
-                nd.mp = s.mp;
-                std::copy(s.lo, s.lo + 3, nd.lo);
-                std::copy(s.hi, s.hi + 3, nd.hi);
-                nd.hmax = s.hmax;
+                static_cast<LeafSummary<T>&>(nd) = leaves[tn[k].begin];
             } else {
                 combine_children(nd);
             }
@@ -181,12 +168,8 @@ class GravityTree {
             if (nd.first_child < 0) {
                 nd.begin = on[k].begin;
                 nd.end = on[k].end;
-                auto ls = summarise_particles(s.x.data(), s.y.data(), s.z.data(), s.m.data(),
-                                              s.h.data(), nd.begin, nd.end);
-                nd.mp = ls.mp;
-                std::copy(ls.lo, ls.lo + 3, nd.lo);
-                std::copy(ls.hi, ls.hi + 3, nd.hi);
-                nd.hmax = ls.hmax;
+                static_cast<LeafSummary<T>&>(nd) = summarise_particles(
+                    s.x.data(), s.y.data(), s.z.data(), s.m.data(), s.h.data(), nd.begin, nd.end);
             } else {
                 combine_children(nd, out.data());
             }

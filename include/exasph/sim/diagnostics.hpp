@@ -48,19 +48,11 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     const T* phi = ps.data(Field::phi);
     const T *ax = ps.data(Field::ax), *ay = ps.data(Field::ay), *az = ps.data(Field::az),
             *du = ps.data(Field::du), *cs = ps.data(Field::c);
-    auto w = block_sum<4>(n_owned, [&](std::size_t i) -> std::array<double, 4> {
+    auto s = block_sum<14>(n_owned, [&](std::size_t i) -> std::array<double, 14> {
         const double mi = m[i];
+        const double v2 = double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i];
         const double va = double(vx[i]) * ax[i] + double(vy[i]) * ay[i] + double(vz[i]) * az[i];
-        const double v =
-            std::sqrt(double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i]);
-        const double a =
-            std::sqrt(double(ax[i]) * ax[i] + double(ay[i]) * ay[i] + double(az[i]) * az[i]);
-        return {mi, mi * (std::abs(va) + std::abs(double(du[i]))), mi * (v + double(cs[i])),
-                mi * a};
-    });
-    auto s = block_sum<10>(n_owned, [&](std::size_t i) -> std::array<double, 10> {
-        double mi = m[i];
-        double v2 = double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i];
+        const double a2 = double(ax[i]) * ax[i] + double(ay[i]) * ay[i] + double(az[i]) * az[i];
         return {0.5 * mi * v2,
                 mi * u[i],
                 mi * vx[i],
@@ -70,7 +62,11 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
                 mi * (double(z[i]) * vx[i] - double(x[i]) * vz[i]),
                 mi * (double(x[i]) * vy[i] - double(y[i]) * vx[i]),
                 double(nc[i]),
-                0.5 * mi * phi[i]}; // each pair counted from both sides (SPEC 8)
+                0.5 * mi * phi[i], // each pair counted from both sides (SPEC 8)
+                mi,
+                mi * (std::abs(va) + std::abs(double(du[i]))),
+                mi * (std::sqrt(v2) + double(cs[i])),
+                mi * std::sqrt(a2)};
     });
     double nc_lo = std::numeric_limits<double>::infinity(), nc_hi = -nc_lo;
     for (std::size_t i = 0; i < n_owned; ++i) {
@@ -95,7 +91,7 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     }
     out[11] = {l1, rho_max};
     out[12] = {s[9], -std::numeric_limits<double>::infinity()};
-    for (int k = 0; k < 4; ++k) out[13 + k] = {w[k], -std::numeric_limits<double>::infinity()};
+    for (int k = 0; k < 4; ++k) out[13 + k] = {s[10 + k], -std::numeric_limits<double>::infinity()};
 }
 
 inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "exasph/particles/particle_set.hpp"
+#include "exasph/sim/diagnostics.hpp"
 #include "exasph/util/box.hpp"
 #include "exasph/util/checksum.hpp"
 #include "exasph/util/error.hpp"
@@ -205,15 +206,10 @@ class StateGuard {
 // momentum, which is therefore not checked); the total energy may change in one step by the
 // time-integration error, a small fraction of the energy moved between forms in that step,
 // dt * sum m (|v.a| + |du|). Returns "" or what was violated.
-struct WatchdogTotals {
-    double mass, etot, epot, power_abs, momentum_abs, force_abs, dt;
-    double momentum[3];
-};
-
 inline constexpr double kWatchdogEnergyBudget =
     0.25; // clean runs: <= 0.07 after step 1 // of dt * gross power (see docs/resilience)
 
-inline std::string conservation_violation(const WatchdogTotals& prev, const WatchdogTotals& now,
+inline std::string conservation_violation(const Diagnostics& prev, const Diagnostics& now,
                                           double mass0, bool check_momentum) {
     auto rel = [](double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); };
     auto num = [](double v) {

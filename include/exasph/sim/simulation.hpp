@@ -114,7 +114,7 @@ class Simulation {
         const bool alarm = sdc_on() && !verify_state();
         domain_.sync(ps_, box_, alarm);
         if (domain_.alarm())
-            return recover("the state check before step " + std::to_string(step_ + 1));
+            return recover("the state check before step " + std::to_string(step_ + 1), step_ + 1);
         if (pending_.valid) rollback_ = std::move(pending_), pending_.valid = false;
         timer_.stop(kSync);
         find_neighbours();
@@ -148,11 +148,11 @@ class Simulation {
         const Diagnostics before = diag_;
         diagnose(dt);
         if (sdc_on()) {
-            std::string why = conservation_violation(watchdog_totals(before),
-                                                     watchdog_totals(diag_), mass0_, !gravity_);
+            std::string why = conservation_violation(before, diag_, mass0_, !gravity_);
             if (!why.empty()) {
                 if (domain_.rank() == 0) sdc_detail_ = "watchdog: " + why;
-                return recover("the conservation watchdog after step " + std::to_string(step_));
+                return recover("the conservation watchdog after step " + std::to_string(step_),
+                               step_);
             }
             guard_.seal(ps_, n_owned());
             press_ok_ = true;
@@ -344,11 +344,12 @@ class Simulation {
         return true;
     }
 
-    // All ranks: after a detection, roll back to the last verified state (or abort).
-    void recover(const std::string& where) {
+    // All ranks: after a detection (by `where`, in or before step `step`), roll back to the last
+    // verified state (or abort).
+    void recover(const std::string& where, std::int64_t step) {
         pending_.valid = false;
         ++recoveries_;
-        sdc_step_ = step_ + (where.find("watchdog") == std::string::npos ? 1 : 0);
+        sdc_step_ = step;
         const bool can = cfg_.on_sdc == "rollback" && rollback_.valid && recoveries_ <= 100 &&
                          rollback_.rs.step < step_ + 1;
         std::string detail = sdc_detail_.empty() ? "found on another rank" : sdc_detail_;
@@ -370,11 +371,6 @@ class Simulation {
         press_ok_ = false; // accelerations are not part of the rollback point
         recovered_ = true;
         timer_.end_step();
-    }
-
-    static WatchdogTotals watchdog_totals(const Diagnostics& d) {
-        return {d.mass,         d.etot,      d.epot, d.power_abs,
-                d.momentum_abs, d.force_abs, d.dt,   {d.momentum[0], d.momentum[1], d.momentum[2]}};
     }
 
     // The first diagnostics row needs the potential energy of the initial positions, before any
