@@ -162,6 +162,10 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
                    "Artificial conductivity coefficient alpha_u (Price 2008); 0 is off")
         ->check(CLI::Range(0.0, 10.0))
         ->capture_default_str();
+    app.add_flag("--av-limiter", cfg.av_limiter,
+                 "Artificial viscosity from velocities reconstructed linearly to each pair's "
+                 "midpoint with a van Leer slope limiter (Rosswog 2015): no dissipation in "
+                 "smooth compression, full at shocks");
     app.add_option("--alpha-min", cfg.alpha_min, "AV switch: smallest alpha")
         ->check(CLI::Range(0.0, 10.0))
         ->capture_default_str();
@@ -367,7 +371,7 @@ int main(int argc, char** argv) {
         for (const char* opt :
              {"--init", "-n", "--ng0", "--ngmax", "--kernel-exponent", "--courant", "--alpha",
               "--global-bucket", "--leaf-size", "--curve", "--av-switch", "--alpha-min",
-              "--volume-elements", "--conductivity"})
+              "--volume-elements", "--conductivity", "--av-limiter"})
             if (app.count(opt) > 0)
                 return finish_with_error(std::string(opt) +
                                              " cannot be changed on --restart (the checkpoint "

@@ -45,7 +45,18 @@ enum class Field : std::uint8_t {
     xm,       // volume-element weight X (= m for standard SPH; (m/rho)^p with volume elements)
     kx,       // volume-element normalisation k = sum_b X_b W_ab
     phi,      // gravitational potential (SPEC 8; 0 without gravity)
-    count_    // number of fields (not a field)
+    // Velocity gradient dv_i/dx_j (IAD), only with --av-limiter: the slope of the velocity
+    // reconstruction in the artificial viscosity.
+    gxx,
+    gxy,
+    gxz,
+    gyx,
+    gyy,
+    gyz,
+    gzx,
+    gzy,
+    gzz,
+    count_ // number of fields (not a field)
 };
 
 inline constexpr std::size_t kNumFields = static_cast<std::size_t>(Field::count_);
@@ -61,6 +72,7 @@ enum FieldRole : std::uint8_t {
     kHaloSync = 1u << 3,    // after the domain sync, before the neighbour search
     kHaloDensity = 1u << 4, // after density and EOS, before IAD
     kHaloIad = 1u << 5,     // after IAD, before momentum and energy
+    kHaloGrad = 1u << 6,    // with kHaloIad, only when the velocity gradient is used
 };
 
 struct FieldInfo {
@@ -109,8 +121,22 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::xm,       "xm",       "volume^p",    kState | kHaloSync, "volume-element weight X"},
     {Field::kx,       "kx",       "volume^(p-1)", kDerived | kHaloDensity, "volume-element normalisation k"},
     {Field::phi,      "phi",      "energy/mass", kDerived | kSnapshot, "gravitational potential"},
+    {Field::gxx,      "dvx_dx",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvx/dx"},
+    {Field::gxy,      "dvx_dy",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvx/dy"},
+    {Field::gxz,      "dvx_dz",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvx/dz"},
+    {Field::gyx,      "dvy_dx",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvy/dx"},
+    {Field::gyy,      "dvy_dy",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvy/dy"},
+    {Field::gyz,      "dvy_dz",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvy/dz"},
+    {Field::gzx,      "dvz_dx",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvz/dx"},
+    {Field::gzy,      "dvz_dy",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvz/dy"},
+    {Field::gzz,      "dvz_dz",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvz/dz"},
 }};
 // clang-format on
+
+// dv_i/dx_j in row-major order (the layout of VelocityGradient).
+inline constexpr std::array<Field, 9> kVelocityGradientFields{Field::gxx, Field::gxy, Field::gxz,
+                                                              Field::gyx, Field::gyy, Field::gyz,
+                                                              Field::gzx, Field::gzy, Field::gzz};
 
 // The fields carrying any of the role bits, in table order.
 inline std::vector<Field> fields_with_role(std::uint8_t roles) {

@@ -23,6 +23,7 @@ struct Config {
     double alpha_min = 0.05;      // AV switch: floor of alpha
     double av_decay = 0.2;        // AV switch: decay rate in sound-crossing times of h
     double conductivity = 0.0;    // artificial conductivity alpha_u (0: off)
+    bool av_limiter = false;      // viscosity from limited midpoint-reconstructed velocities
     bool volume_elements = false; // generalised volume elements X = (m/rho)^ve_exponent
     double ve_exponent = 0.7;
     double G = -1.0;        // gravitational constant (--G); < 0: the case's (0: no gravity)

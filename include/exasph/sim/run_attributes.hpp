@@ -44,6 +44,7 @@ void write_run_attributes(const h5::Group& g, const Config& cfg, const Box<T>& b
     h5::write_attribute(g, "param:alpha_min", cfg.alpha_min);
     h5::write_attribute(g, "param:volume_elements", std::int64_t(cfg.volume_elements));
     h5::write_attribute(g, "param:conductivity", cfg.conductivity);
+    h5::write_attribute(g, "param:av_limiter", std::int64_t(cfg.av_limiter));
     h5::write_attribute(g, "param:G", std::max(cfg.G, 0.0));
     h5::write_attribute(g, "param:theta", cfg.theta);
     h5::write_attribute(g, "param:accel_eps", cfg.accel_eps);
@@ -71,6 +72,7 @@ inline void read_run_parameters(const h5::Group& g, Config& cfg) {
     cfg.alpha_min = num("param:alpha_min");
     cfg.volume_elements = num("param:volume_elements") != 0;
     cfg.conductivity = num("param:conductivity");
+    cfg.av_limiter = h5::has_attribute(g, "param:av_limiter") && num("param:av_limiter") != 0;
     // Gravity parameters came with issue 6: older files ran without gravity.
     cfg.G = h5::has_attribute(g, "param:G") ? num("param:G") : 0.0;
     if (h5::has_attribute(g, "param:theta")) cfg.theta = num("param:theta");

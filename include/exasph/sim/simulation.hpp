@@ -1,8 +1,10 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -125,10 +127,10 @@ class Simulation {
         compute_eos(ps_, eos_, n_owned());
         domain_.exchange_halos(ps_, kHaloDensity);
         timer_.stop(kEos);
-        compute_iad(ps_, nlists_, box_, kernel_.view());
-        domain_.exchange_halos(ps_, kHaloIad);
+        compute_iad(ps_, nlists_, box_, kernel_.view(), cfg_.av_limiter);
+        domain_.exchange_halos(ps_, cfg_.av_limiter ? kHaloIad | kHaloGrad : kHaloIad);
         timer_.stop(kIad);
-        compute_momentum_energy(ps_, nlists_, box_, kernel_.view(), T(cfg_.conductivity));
+        compute_momentum_energy(ps_, nlists_, box_, kernel_.view(), dissipation());
         timer_.stop(kMomentumEnergy);
         if (gravity_)
             gravity_->compute(ps_, n_owned(), domain_.assignment(), box_, domain_.curve(),
@@ -311,6 +313,15 @@ class Simulation {
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i)
             alpha[i] = evolve_alpha(alpha[i], divv[i], h[i], c[i], T(dt), amin, amax, decay);
+    }
+
+    Dissipation<T> dissipation() const {
+        Dissipation<T> d;
+        d.alpha_u = T(cfg_.conductivity);
+        d.reconstruct = cfg_.av_limiter;
+        // About the mean particle spacing in units of h: (4/3 pi (2h)^3 / ng0)^(1/3) / h.
+        d.eta_crit = T(std::cbrt(32.0 * std::numbers::pi / (3.0 * cfg_.ng0)));
+        return d;
     }
 
     // Volume elements: X_a = (m_a / rho_a)^p from this step's density, used by the next step.

@@ -52,16 +52,21 @@ void compute_eos(ParticleSet<T>& ps, const EosParams& eos, std::size_t n_owned) 
     }
 }
 
-// Throws Error naming a particle whose tau is singular (SPEC 5).
+// Throws Error naming a particle whose tau is singular (SPEC 5). With `with_gradient`, also
+// stores the velocity gradient (Field::gxx..gzz) for the reconstructed artificial viscosity.
 template <class T>
 void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
-                 const KernelView<T>& k) {
+                 const KernelView<T>& k, bool with_gradient = false) {
     auto p = make_view(ps);
     const auto n = static_cast<std::int64_t>(nl.size());
     std::int64_t first_singular = n;
 #pragma omp parallel for schedule(dynamic, kHydroChunk) reduction(min : first_singular)
     for (std::int64_t i = 0; i < n; ++i) {
-        auto r = iad_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k);
+        VelocityGradient<T> g;
+        auto r = iad_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k,
+                          with_gradient ? &g : nullptr);
+        if (with_gradient)
+            for (int c = 0; c < 9; ++c) p[kVelocityGradientFields[c]][i] = g.g[c];
         if (r.singular && i < first_singular) first_singular = i;
         p[Field::c11][i] = r.c11;
         p[Field::c12][i] = r.c12;
@@ -79,13 +84,13 @@ void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& 
 
 template <class T>
 void compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
-                             const KernelView<T>& k, T alpha_u = T(0)) {
+                             const KernelView<T>& k, const Dissipation<T>& diss = {}) {
     auto p = make_view(ps);
     const auto n = static_cast<std::int64_t>(nl.size());
 #pragma omp parallel for schedule(dynamic, kHydroChunk)
     for (std::int64_t i = 0; i < n; ++i) {
         auto r = momentum_energy_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box,
-                                      k, alpha_u);
+                                      k, diss);
         p[Field::ax][i] = r.ax;
         p[Field::ay][i] = r.ay;
         p[Field::az][i] = r.az;

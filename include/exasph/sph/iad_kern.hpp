@@ -36,11 +36,32 @@ EXASPH_HD IadResult<T> invert_symmetric3(T t11, T t12, T t13, T t22, T t23, T t3
             singular};
 }
 
+// The IAD velocity gradient G_ij = dv_i/dx_j, row-major.
+template <class T>
+struct VelocityGradient {
+    T g[9];
+};
+
+// G_a = D_a C_a with D_a = sum_b V_b (v_b - v_a) (x) (x_b - x_a) W_ab(h_a): the IAD gradient
+// (SPEC 5) of each velocity component, exact for a linear velocity field.
+template <class T>
+EXASPH_HD VelocityGradient<T> velocity_gradient(const T (&d)[9], const IadResult<T>& c) {
+    const T cm[9] = {c.c11, c.c12, c.c13, c.c12, c.c22, c.c23, c.c13, c.c23, c.c33};
+    VelocityGradient<T> out;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            out.g[3 * i + j] =
+                d[3 * i] * cm[j] + d[3 * i + 1] * cm[3 + j] + d[3 * i + 2] * cm[6 + j];
+    return out;
+}
+
 // SPEC 5, with the volume V_b = X_b / k_b (= m_b / rho_b for standard SPH):
 // tau_a = sum_b V_b (x_b - x_a) (x) (x_b - x_a) W_ab(h_a), C_a = tau_a^{-1}.
+// With a non-null `grad`, the same pass also yields the velocity gradient (velocity_gradient).
 template <class T>
 EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
-                                const Box<T>& box, const KernelView<T>& k) {
+                                const Box<T>& box, const KernelView<T>& k,
+                                VelocityGradient<T>* grad = nullptr) {
     const T* x = p[Field::x];
     const T* y = p[Field::y];
     const T* z = p[Field::z];
@@ -48,7 +69,9 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const Particl
     const T* kx = p[Field::kx];
     const T ha = p[Field::h][a];
     const T inv_h = T(1) / ha;
+    const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
     T t11 = 0, t12 = 0, t13 = 0, t22 = 0, t23 = 0, t33 = 0;
+    T d[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         std::uint32_t b = nb.index[n];
         T dx = box.min_image(x[b] - x[a], 0);
@@ -63,10 +86,23 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const Particl
         t22 += dy * dy * vw;
         t23 += dy * dz * vw;
         t33 += dz * dz * vw;
+        if (grad) {
+            const T dv[3] = {vx[b] - vx[a], vy[b] - vy[a], vz[b] - vz[a]};
+            for (int i = 0; i < 3; ++i) {
+                d[3 * i] += dv[i] * dx * vw;
+                d[3 * i + 1] += dv[i] * dy * vw;
+                d[3 * i + 2] += dv[i] * dz * vw;
+            }
+        }
     }
     // W = w / h^3: the 1/h^3 factor is applied once here instead of per pair.
     T s = inv_h * inv_h * inv_h;
-    return invert_symmetric3(t11 * s, t12 * s, t13 * s, t22 * s, t23 * s, t33 * s);
+    IadResult<T> c = invert_symmetric3(t11 * s, t12 * s, t13 * s, t22 * s, t23 * s, t33 * s);
+    if (grad) {
+        for (T& di : d) di *= s;
+        *grad = velocity_gradient(d, c);
+    }
+    return c;
 }
 
 } // namespace exasph

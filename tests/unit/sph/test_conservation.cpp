@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "exasph/domain/sfc_order.hpp"
 #include "exasph/sph/hydro.hpp"
 #include "exasph/sph/sinc_kernel.hpp"
+#include "neighbour_setup.hpp"
 #include "random_particles.hpp"
 
 using namespace exasph;
@@ -20,7 +20,7 @@ struct Sums {
 };
 
 Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false,
-                       double conductivity = 0.0) {
+                       const Dissipation<double>& diss = {}) {
     Box<double> box;
     auto ps = testref::periodic_lattice(14, 100, box);
     std::mt19937_64 rng(7);
@@ -40,20 +40,14 @@ Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false,
         for (std::size_t i = 0; i < ps.size(); ++i)
             ps[Field::xm][i] = std::pow(ps[Field::m][i] / rho_prev(rng), 0.7);
     }
-    auto keys = sort_along_curve(ps, box, CurveKind::hilbert);
-    Octree<double> tree;
-    tree.build(keys.data(), std::uint32_t(ps.size()), 64);
-    SearchView<double> sv{ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
-                          ps.data(Field::h)};
-    tree.update_bounds(sv.x, sv.y, sv.z, sv.h);
     NeighbourLists<double> nl;
-    nl.build(tree, sv, box, crit, std::uint32_t(ps.size()));
+    testref::sort_and_find_neighbours(ps, box, crit, nl);
     KernelTable<double> k(sinc_kernel(6));
     compute_density(ps, nl, box, k.view());
     compute_eos(ps, EosParams{}, ps.size());
-    compute_iad(ps, nl, box, k.view());
+    compute_iad(ps, nl, box, k.view(), diss.reconstruct);
     std::fill(ps[Field::alpha].begin(), ps[Field::alpha].end(), 1.0);
-    compute_momentum_energy(ps, nl, box, k.view(), conductivity);
+    compute_momentum_energy(ps, nl, box, k.view(), diss);
 
     double sum_ma[3] = {0, 0, 0}, sum_abs_ma = 0, sum_e = 0, sum_abs_va = 0;
     std::size_t approaching = 0;
@@ -92,8 +86,18 @@ TEST(Conservation, VolumeElementsConserveMomentumAndEnergy) {
 }
 
 TEST(Conservation, ArtificialConductivityConservesEnergy) {
-    Sums s = conservation_sums(NeighbourCriterion::symmetric, true, 1.0);
+    Sums s = conservation_sums(NeighbourCriterion::symmetric, true, Dissipation<double>{1.0});
     std::printf("conductivity: momentum %.3e energy %.3e\n", s.momentum_ratio, s.energy_ratio);
+    EXPECT_LT(s.momentum_ratio, 1e-12);
+    EXPECT_LT(s.energy_ratio, 1e-10);
+}
+
+TEST(Conservation, LimitedReconstructedViscosityConservesMomentumAndEnergy) {
+    Dissipation<double> diss;
+    diss.reconstruct = true;
+    diss.eta_crit = 0.7;
+    Sums s = conservation_sums(NeighbourCriterion::symmetric, false, diss);
+    std::printf("av limiter: momentum %.3e energy %.3e\n", s.momentum_ratio, s.energy_ratio);
     EXPECT_LT(s.momentum_ratio, 1e-12);
     EXPECT_LT(s.energy_ratio, 1e-10);
 }
