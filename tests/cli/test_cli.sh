@@ -38,6 +38,7 @@ expect_rejected "--ngmax" --ngmax 50
 expect_rejected "--courant" --courant 0
 expect_rejected "--t-end" --t-end -1
 expect_rejected "--threads" --threads 0
+expect_rejected "--av-limiter" -n 10 -s 1 -w 1 -f rho,dvx_dx
 expect_rejected "smoothing length" -n 4 -s 1
 expect_rejected "--theta" --init evrard --theta 1.5
 expect_rejected "open box" --init sedov --lattice -n 10 --G 1 -s 1

@@ -191,7 +191,7 @@ inline int run(Config cfg, std::ostream& out) {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
     const bool root = rank == 0;
-    auto fields = snapshot_field_list(cfg.snapshot_fields);
+    auto fields = snapshot_field_list(cfg.snapshot_fields, cfg.av_limiter);
     std::string units;
     double case_t_end = 0;
     auto sim_ptr = make_simulation(cfg, units, case_t_end);

@@ -14,8 +14,10 @@
 
 namespace exasph {
 
-// Resolves -f names to fields (x, y, z are always written: ParaView needs the geometry).
-inline std::vector<Field> snapshot_field_list(const std::vector<std::string>& names) {
+// Resolves -f names to fields (x, y, z are always written: ParaView needs the geometry). The
+// velocity gradient exists only in runs with --av-limiter (`with_gradient`).
+inline std::vector<Field> snapshot_field_list(const std::vector<std::string>& names,
+                                              bool with_gradient = false) {
     std::vector<Field> out{Field::x, Field::y, Field::z};
     if (names.empty()) {
         for (const auto& info : kFieldTable)
@@ -33,6 +35,8 @@ inline std::vector<Field> snapshot_field_list(const std::vector<std::string>& na
                 known += (known.empty() ? "" : ",") + std::string(f.name);
             throw input_error("-f: unknown field '" + n + "' (known: " + known + ")", true);
         }
+        if ((it->roles & kHaloGrad) && !with_gradient)
+            throw input_error("-f: field '" + n + "' is computed only with --av-limiter", true);
         if (std::find(out.begin(), out.end(), it->field) == out.end()) out.push_back(it->field);
     }
     return out;
