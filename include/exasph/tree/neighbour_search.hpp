@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -155,19 +156,26 @@ class NeighbourLists {
     std::uint32_t search_all(const Octree<T>& owned, const Octree<T>* halos, const SearchView<T>& p,
                              const Box<T>& box, NeighbourCriterion crit) {
         const auto& leaves = owned.leaves();
+        const PeriodicImage image(box);
         std::uint32_t max_count = 0;
 #pragma omp parallel reduction(max : max_count)
         {
             std::vector<const OctreeNode<T>*> candidates;
+            std::vector<std::uint32_t> found;
 #pragma omp for schedule(dynamic, 4)
             for (std::size_t l = 0; l < leaves.size(); ++l) {
                 const auto& group = owned.nodes()[leaves[l]];
                 candidates.clear();
                 collect_leaves(owned, group, box, crit, candidates);
                 if (halos) collect_leaves(*halos, group, box, crit, candidates);
+                std::size_t reachable = 0;
+                for (const auto* leaf : candidates) reachable += leaf->end - leaf->begin;
+                found.resize(reachable + 1);
                 for (std::uint32_t i = group.begin; i < group.end; ++i) {
-                    std::uint32_t c = neighbours_in(candidates, p, box, crit, i,
-                                                    index_.data() + std::size_t(i) * stride_);
+                    std::uint32_t c =
+                        neighbours_in(candidates, p, box, image, crit, i, found.data());
+                    std::uint32_t* out = index_.data() + std::size_t(i) * stride_;
+                    std::copy(found.data(), found.data() + std::min(c, stride_), out);
                     count_[i] = std::min(c, stride_);
                     max_count = std::max(max_count, c);
                 }
@@ -198,37 +206,58 @@ class NeighbourLists {
         }
     }
 
-    // Neighbours of particle i among the candidate leaves; writes at most stride_ indices and
-    // returns the true count.
-    std::uint32_t neighbours_in(const std::vector<const OctreeNode<T>*>& candidates,
-                                const SearchView<T>& p, const Box<T>& box, NeighbourCriterion crit,
-                                std::uint32_t i, std::uint32_t* out) const {
+    // The minimum image as branch-free selects with loop-invariant operands, so that the
+    // distance loop below vectorises; an open axis gets an infinite half-period (never wraps).
+    // Gives the same result as Box::min_image.
+    struct PeriodicImage {
+        T len[3], half[3];
+        explicit PeriodicImage(const Box<T>& box) {
+            for (int d = 0; d < 3; ++d) {
+                len[d] = box.periodic[d] ? box.hi[d] - box.lo[d] : T(0);
+                half[d] = box.periodic[d] ? T(0.5) * len[d] : std::numeric_limits<T>::infinity();
+            }
+        }
+    };
+    static T wrap(T d, T len, T half) {
+        d = d > half ? d - len : d;
+        return d < -half ? d + len : d;
+    }
+
+    // Neighbours of particle i among the candidate leaves, in candidate order, written to `out`
+    // (room for every candidate particle); returns the count.
+    static std::uint32_t neighbours_in(const std::vector<const OctreeNode<T>*>& candidates,
+                                       const SearchView<T>& p, const Box<T>& box,
+                                       const PeriodicImage& im, NeighbourCriterion crit,
+                                       std::uint32_t i, std::uint32_t* out) {
         const T pos[3] = {p.x[i], p.y[i], p.z[i]};
         const T hi = p.h[i];
+        const bool symmetric = crit == NeighbourCriterion::symmetric;
+        const T lx = im.len[0], ly = im.len[1], lz = im.len[2];
+        const T hx = im.half[0], hy = im.half[1], hz = im.half[2];
         std::uint32_t count = 0;
-        // Within a leaf: a branch-free pass that the compiler vectorises, then compaction.
-        constexpr std::uint32_t kMaxLeaf = 512;
-        unsigned char hit[kMaxLeaf];
+        // Within a leaf: a branch-free distance pass that the compiler vectorises, then a
+        // branch-free compaction (every index is written, the count advances on a hit).
+        constexpr std::uint32_t kChunk = 256;
+        unsigned char hit[kChunk];
         for (const OctreeNode<T>* leaf : candidates) {
-            T reach =
-                T(2) * (crit == NeighbourCriterion::symmetric ? std::max(hi, leaf->hmax) : hi);
+            T reach = T(2) * (symmetric ? std::max(hi, leaf->hmax) : hi);
             if (node_distance2(*leaf, pos, box) >= reach * reach) continue;
-            const std::uint32_t b = leaf->begin, n = leaf->end - leaf->begin;
-            if (n > kMaxLeaf) {
-                for (std::uint32_t j = b; j < leaf->end; ++j) {
-                    if (j == i || !is_neighbour(pair_distance2(p, box, i, j), hi, p.h[j], crit))
-                        continue;
-                    if (count < stride_) out[count] = j;
-                    ++count;
+            for (std::uint32_t b = leaf->begin; b < leaf->end; b += kChunk) {
+                const std::uint32_t n = std::min(kChunk, leaf->end - b);
+                const T *xb = p.x + b, *yb = p.y + b, *zb = p.z + b, *hb = p.h + b;
+#pragma omp simd
+                for (std::uint32_t k = 0; k < n; ++k) {
+                    T dx = wrap(xb[k] - pos[0], lx, hx);
+                    T dy = wrap(yb[k] - pos[1], ly, hy);
+                    T dz = wrap(zb[k] - pos[2], lz, hz);
+                    T r2 = dx * dx + dy * dy + dz * dz;
+                    T hh = symmetric ? std::max(hi, hb[k]) : hi;
+                    hit[k] = (r2 < T(4) * hh * hh) & (b + k != i);
                 }
-                continue;
-            }
-            for (std::uint32_t k = 0; k < n; ++k)
-                hit[k] = is_neighbour(pair_distance2(p, box, i, b + k), hi, p.h[b + k], crit);
-            for (std::uint32_t k = 0; k < n; ++k) {
-                if (!hit[k] || b + k == i) continue;
-                if (count < stride_) out[count] = b + k;
-                ++count;
+                for (std::uint32_t k = 0; k < n; ++k) {
+                    out[count] = b + k;
+                    count += hit[k];
+                }
             }
         }
         return count;
