@@ -15,17 +15,16 @@ EXASPH_HD constexpr std::uint64_t hilbert_encode(std::uint32_t ix, std::uint32_t
                                                  std::uint32_t iz) {
     std::uint32_t a[3] = {ix, iy, iz};
     constexpr std::uint32_t top = 1u << (kKeyBitsPerAxis - 1);
-    // Undo the rotations/reflections from the top bit down.
+    // Undo the rotations/reflections from the top bit down. Branch-free (the bit tests are
+    // data-dependent and mispredict half the time): where bit q of a[i] is set, a[0] ^= p;
+    // otherwise the low bits of a[0] and a[i] are exchanged (nothing for i = 0).
     for (std::uint32_t q = top; q > 1; q >>= 1) {
         std::uint32_t p = q - 1;
         for (int i = 0; i < 3; ++i) {
-            if (a[i] & q) {
-                a[0] ^= p;
-            } else {
-                std::uint32_t t = (a[0] ^ a[i]) & p;
-                a[0] ^= t;
-                a[i] ^= t;
-            }
+            std::uint32_t set = 0u - std::uint32_t((a[i] & q) != 0);
+            std::uint32_t t = (a[0] ^ a[i]) & p & ~set;
+            a[0] ^= (p & set) | t;
+            a[i] ^= t;
         }
     }
     // Gray encoding.
@@ -33,7 +32,7 @@ EXASPH_HD constexpr std::uint64_t hilbert_encode(std::uint32_t ix, std::uint32_t
     a[2] ^= a[1];
     std::uint32_t t = 0;
     for (std::uint32_t q = top; q > 1; q >>= 1)
-        if (a[2] & q) t ^= q - 1;
+        t ^= (q - 1) & (0u - std::uint32_t((a[2] & q) != 0));
     for (auto& c : a) c ^= t;
     return morton_encode(a[0], a[1], a[2]);
 }

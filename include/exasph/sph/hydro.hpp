@@ -86,11 +86,15 @@ template <class T>
 void compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
                              const KernelView<T>& k, const Dissipation<T>& diss = {}) {
     auto p = make_view(ps);
+    const bool extras = diss.reconstruct || diss.alpha_u > T(0);
     const auto n = static_cast<std::int64_t>(nl.size());
 #pragma omp parallel for schedule(dynamic, kHydroChunk)
     for (std::int64_t i = 0; i < n; ++i) {
-        auto r = momentum_energy_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box,
-                                      k, diss);
+        auto r = extras
+                     ? momentum_energy_kern<T, true>(
+                           std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k, diss)
+                     : momentum_energy_kern<T, false>(
+                           std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k, diss);
         p[Field::ax][i] = r.ax;
         p[Field::ay][i] = r.ay;
         p[Field::az][i] = r.az;

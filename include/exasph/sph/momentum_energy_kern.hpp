@@ -79,7 +79,7 @@ EXASPH_HD IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T d
 //             -1/2 sum_b m_b Pi_ab [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
 //   du_a/dt = P_a/(Om_a rho_a^2) sum_b m_b v_ab . A_ab(h_a)
 //             +1/4 sum_b m_b Pi_ab v_ab . [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
-template <class T>
+template <class T, bool kExtras = true>
 EXASPH_HD MomentumEnergyResult<T>
 momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p, const Box<T>& box,
                      const KernelView<T>& k, const Dissipation<T>& diss = {}) {
@@ -101,6 +101,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
     T ga[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     if (diss.reconstruct)
         for (int c = 0; c < 9; ++c) ga[c] = p[kVelocityGradientFields[c]][a];
+#pragma omp simd reduction(+ : ax, ay, az, du_p, du_av, divv, du_cond) reduction(max : vsig_max)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         const std::uint32_t b = nb.index[n];
         // d = x_b - x_a = -r_ab
@@ -124,7 +125,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
         // alpha_ab = (alpha_a + alpha_b)/2 keeps Pi_ab symmetric (= alpha for a constant alpha)
         T alpha_ab = T(0.5) * (alpha[a] + alpha[b]);
         T pi_ab = vr < T(0) ? T(-0.5) * alpha_ab * vsig * w_ab : T(0);
-        if (diss.reconstruct && vr < T(0)) {
+        if (kExtras && diss.reconstruct && vr < T(0)) {
             // Only pairs that really approach are dissipated: the heating Pi_ab v_ab . A stays
             // positive.
             T gb[9];
@@ -150,7 +151,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
         du_p += xb * v_dot_a;
         divv -= xb / kx[b] * v_dot_a;
         du_av += mb * pi_ab * (vabx * gx + vaby * gy + vabz * gz);
-        if (alpha_u > T(0)) {
+        if (kExtras && alpha_u > T(0)) {
             // Artificial conductivity (Price 2008): heat flows from hot to cold along the pair,
             // with signal speed sqrt(|P_a - P_b| / rho_ab) and |grad W| ~ A_bar . d / r, both
             // symmetric in a and b, so sum_a m_a du_a/dt stays zero.
