@@ -12,7 +12,8 @@
 namespace exasph {
 
 // Structure of arrays: one vector per field of kFieldTable, plus a persistent 64-bit id.
-// Invariant: every field vector and `id` have size() elements.
+// Optional fields (role kHaloGrad: computed only by some options) hold no memory until enabled.
+// Invariant: every enabled field vector and `id` have size() elements; disabled ones are empty.
 template <class T>
 class ParticleSet {
   public:
@@ -21,8 +22,21 @@ class ParticleSet {
     std::size_t size() const { return id.size(); }
 
     void resize(std::size_t n) {
-        for (auto& f : fields_) f.resize(n);
+        for (std::size_t f = 0; f < kNumFields; ++f)
+            if (enabled(static_cast<Field>(f))) fields_[f].resize(n);
         id.resize(n);
+    }
+
+    bool enabled(Field f) const {
+        return !(field_info(f).roles & kHaloGrad) || optional_on_[static_cast<std::size_t>(f)];
+    }
+    // Allocates the optional fields with any of `roles` (e.g. the velocity gradient).
+    void enable(std::uint8_t roles) {
+        for (const auto& info : kFieldTable)
+            if ((info.roles & kHaloGrad) && (info.roles & roles)) {
+                optional_on_[static_cast<std::size_t>(info.field)] = true;
+                (*this)[info.field].resize(size());
+            }
     }
 
     std::vector<T>& operator[](Field f) { return fields_[static_cast<std::size_t>(f)]; }
@@ -50,8 +64,9 @@ class ParticleSet {
     // Checks the invariants of the state: sizes agree, state values finite, m > 0, h > 0.
     // Throws Error naming the first offending particle.
     void validate() const {
-        for (const auto& f : fields_)
-            if (f.size() != size()) throw Error("particle set: field sizes disagree");
+        for (std::size_t f = 0; f < kNumFields; ++f)
+            if (enabled(static_cast<Field>(f)) && fields_[f].size() != size())
+                throw Error("particle set: field sizes disagree");
         for (const auto& info : kFieldTable) {
             if (!(info.roles & kState)) continue;
             const auto& f = (*this)[info.field];
@@ -81,6 +96,7 @@ class ParticleSet {
     }
 
     std::array<std::vector<T>, kNumFields> fields_;
+    std::array<bool, kNumFields> optional_on_{};
 };
 
 } // namespace exasph

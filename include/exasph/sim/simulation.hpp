@@ -78,6 +78,7 @@ class Simulation {
                   cfg.curve),
           dt_m1_(ic.dt0), dt0_(ic.dt0), exact_(std::move(ic.exact)) {
         ps_.validate();
+        if (cfg.av_limiter) ps_.enable(kHaloGrad); // the velocity gradient (72 B/particle)
         if (cfg.on_sdc != "rollback" && cfg.on_sdc != "abort" && cfg.on_sdc != "off")
             throw input_error("--on-sdc must be abort, rollback or off, got " + cfg.on_sdc, true);
         if (!cfg.inject_fault.empty()) fault_ = parse_fault(cfg.inject_fault);

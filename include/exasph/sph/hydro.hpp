@@ -57,6 +57,7 @@ void compute_eos(ParticleSet<T>& ps, const EosParams& eos, std::size_t n_owned) 
 template <class T>
 void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
                  const KernelView<T>& k, bool with_gradient = false) {
+    if (with_gradient) ps.enable(kHaloGrad);
     auto p = make_view(ps);
     const auto n = static_cast<std::int64_t>(nl.size());
     std::int64_t first_singular = n;
