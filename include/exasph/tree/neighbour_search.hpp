@@ -161,6 +161,7 @@ class NeighbourLists {
 #pragma omp parallel reduction(max : max_count)
         {
             std::vector<const OctreeNode<T>*> candidates;
+            CandidateBoxes boxes;
             std::vector<std::uint32_t> found;
 #pragma omp for schedule(dynamic, 4)
             for (std::size_t l = 0; l < leaves.size(); ++l) {
@@ -171,9 +172,10 @@ class NeighbourLists {
                 std::size_t reachable = 0;
                 for (const auto* leaf : candidates) reachable += leaf->end - leaf->begin;
                 found.resize(reachable + 1);
+                boxes.assign(candidates);
                 for (std::uint32_t i = group.begin; i < group.end; ++i) {
                     std::uint32_t c =
-                        neighbours_in(candidates, p, box, image, crit, i, found.data());
+                        neighbours_in(candidates, boxes, p, image, crit, i, found.data());
                     std::uint32_t* out = index_.data() + std::size_t(i) * stride_;
                     std::copy(found.data(), found.data() + std::min(c, stride_), out);
                     count_[i] = std::min(c, stride_);
@@ -223,10 +225,30 @@ class NeighbourLists {
         return d < -half ? d + len : d;
     }
 
+    // The candidate leaves' boxes as arrays (centre, inflated half-width, hmax), so that one
+    // vectorised loop tests a particle against all of them (node_distance2, same arithmetic).
+    struct CandidateBoxes {
+        std::vector<T> c[3], e[3], hmax;
+        std::vector<unsigned char> reached;
+        void assign(const std::vector<const OctreeNode<T>*>& leaves) {
+            const std::size_t n = leaves.size();
+            for (int d = 0; d < 3; ++d) c[d].resize(n), e[d].resize(n);
+            hmax.resize(n);
+            reached.resize(n);
+            for (std::size_t l = 0; l < n; ++l) {
+                for (int d = 0; d < 3; ++d) {
+                    c[d][l] = T(0.5) * (leaves[l]->lo[d] + leaves[l]->hi[d]);
+                    e[d][l] = T(0.5) * (leaves[l]->hi[d] - leaves[l]->lo[d]) * T(kPruneInflate);
+                }
+                hmax[l] = leaves[l]->hmax;
+            }
+        }
+    };
+
     // Neighbours of particle i among the candidate leaves, in candidate order, written to `out`
     // (room for every candidate particle); returns the count.
     static std::uint32_t neighbours_in(const std::vector<const OctreeNode<T>*>& candidates,
-                                       const SearchView<T>& p, const Box<T>& box,
+                                       CandidateBoxes& boxes, const SearchView<T>& p,
                                        const PeriodicImage& im, NeighbourCriterion crit,
                                        std::uint32_t i, std::uint32_t* out) {
         const T pos[3] = {p.x[i], p.y[i], p.z[i]};
@@ -239,9 +261,26 @@ class NeighbourLists {
         // branch-free compaction (every index is written, the count advances on a hit).
         constexpr std::uint32_t kChunk = 256;
         unsigned char hit[kChunk];
-        for (const OctreeNode<T>* leaf : candidates) {
-            T reach = T(2) * (symmetric ? std::max(hi, leaf->hmax) : hi);
-            if (node_distance2(*leaf, pos, box) >= reach * reach) continue;
+        // Which leaf boxes come within reach of the particle (branch-free, vectorised).
+        const std::size_t nleaves = candidates.size();
+        const T *cx = boxes.c[0].data(), *cy = boxes.c[1].data(), *cz = boxes.c[2].data();
+        const T *ex = boxes.e[0].data(), *ey = boxes.e[1].data(), *ez = boxes.e[2].data();
+        const T* lh = boxes.hmax.data();
+        unsigned char* reached = boxes.reached.data();
+#pragma omp simd
+        for (std::size_t l = 0; l < nleaves; ++l) {
+            T gx = std::abs(wrap(cx[l] - pos[0], lx, hx)) - ex[l];
+            T gy = std::abs(wrap(cy[l] - pos[1], ly, hy)) - ey[l];
+            T gz = std::abs(wrap(cz[l] - pos[2], lz, hz)) - ez[l];
+            gx = gx > T(0) ? gx : T(0);
+            gy = gy > T(0) ? gy : T(0);
+            gz = gz > T(0) ? gz : T(0);
+            T reach = T(2) * (symmetric ? std::max(hi, lh[l]) : hi);
+            reached[l] = gx * gx + gy * gy + gz * gz < reach * reach;
+        }
+        for (std::size_t l = 0; l < nleaves; ++l) {
+            if (!reached[l]) continue;
+            const OctreeNode<T>* leaf = candidates[l];
             for (std::uint32_t b = leaf->begin; b < leaf->end; b += kChunk) {
                 const std::uint32_t n = std::min(kChunk, leaf->end - b);
                 const T *xb = p.x + b, *yb = p.y + b, *zb = p.z + b, *hb = p.h + b;
