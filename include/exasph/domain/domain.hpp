@@ -71,10 +71,11 @@ class Domain {
         asg_.leaf_count = counts;
         std::vector<int> dest(ps.size());
         for (std::size_t i = 0; i < ps.size(); ++i) dest[i] = asg_.owner[leaf[i]];
-        migrate_particles(ps, dest, coll_.rank(), coll_.size(), asg_.count[coll_.rank()],
-                          coll_.comm(), kTagMigrate);
+        const bool moved = migrate_particles(ps, dest, coll_.rank(), coll_.size(),
+                                             asg_.count[coll_.rank()], coll_.comm(), kTagMigrate);
         n_owned_ = ps.size();
-        keys = sort_along_curve(ps, box, curve_);
+        // The keys computed above still belong to the particles when none left or arrived.
+        keys = moved ? sort_along_curve(ps, box, curve_) : sort_by_keys(ps, keys);
         local_tree_.build(keys.data(), std::uint32_t(n_owned_), leaf_size_);
         local_tree_.update_bounds(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
                                   ps.data(Field::h));

@@ -53,8 +53,10 @@ void unpack_particles(ParticleSet<T>& ps, std::size_t offset, std::size_t count,
 // Moves every particle i with dest[i] != me to rank dest[i] (point-to-point) and receives the
 // particles others send here until this rank holds `expected` particles: the global tree counts
 // tell every rank its new count, so no extra collective is needed to learn who sends what.
+// Returns whether this rank's particles changed (some left or arrived); if not, they are
+// untouched, in their old order.
 template <class T>
-void migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me, int nranks,
+bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me, int nranks,
                        std::uint64_t expected, MPI_Comm comm, int tag) {
     FieldSelection sel{fields_with_role(kState), true};
     const std::size_t per = sel.doubles_per_particle();
@@ -73,7 +75,8 @@ void migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me,
         MPI_Isend(send_buf[r].data(), int(send_buf[r].size()), MPI_DOUBLE, r, tag, comm,
                   &reqs.back());
     }
-    ps.permute(keep);
+    const bool changed = keep.size() != dest.size() || expected != keep.size();
+    if (keep.size() != dest.size()) ps.permute(keep); // an identity permutation is a plain copy
     if (expected < keep.size()) throw Error("migration: particle count bookkeeping failed");
     std::vector<double> buf;
     while (ps.size() < expected) {
@@ -91,6 +94,7 @@ void migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me,
         unpack_particles(ps, offset, count, sel, buf.data());
     }
     MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
+    return changed;
 }
 
 } // namespace exasph

@@ -33,6 +33,36 @@ void fit_open_axes(Box<T>& box, const ParticleSet<T>& ps) {
     }
 }
 
+// Sorts the particles by `keys` (one per particle: their SFC keys), ties by persistent id, and
+// returns the sorted keys.
+template <class T>
+std::vector<std::uint64_t> sort_by_keys(ParticleSet<T>& ps,
+                                        const std::vector<std::uint64_t>& keys) {
+    struct Item {
+        std::uint64_t key, id;
+        std::uint32_t index;
+        bool operator<(const Item& o) const { return key != o.key ? key < o.key : id < o.id; }
+    };
+    const std::size_t n = keys.size();
+    std::vector<Item> items(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+        items[i] = {keys[i], ps.id[i], static_cast<std::uint32_t>(i)};
+#if defined(_OPENMP) && defined(__GLIBCXX__)
+    __gnu_parallel::sort(items.begin(), items.end());
+#else
+    std::sort(items.begin(), items.end());
+#endif
+    std::vector<std::uint32_t> order(n);
+    std::vector<std::uint64_t> sorted(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        sorted[i] = items[i].key;
+        order[i] = items[i].index;
+    }
+    ps.permute(order);
+    return sorted;
+}
+
 // Sorts the first n particles (all when n is omitted) along the space-filling curve, drops the
 // rest, and returns the sorted keys. Equal keys are ordered by persistent id, so the order is
 // unique: independent of threads and of the order in which migrated particles arrived.
@@ -40,29 +70,11 @@ template <class T>
 std::vector<std::uint64_t> sort_along_curve(ParticleSet<T>& ps, const Box<T>& box, CurveKind kind,
                                             std::size_t n = std::size_t(-1)) {
     n = std::min(n, ps.size());
-    struct Item {
-        std::uint64_t key, id;
-        std::uint32_t index;
-        bool operator<(const Item& o) const { return key != o.key ? key < o.key : id < o.id; }
-    };
-    std::vector<Item> items(n);
+    std::vector<std::uint64_t> keys(n);
     const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i)
-        items[i] = {sfc_key(x[i], y[i], z[i], box, kind), ps.id[i], static_cast<std::uint32_t>(i)};
-#if defined(_OPENMP) && defined(__GLIBCXX__)
-    __gnu_parallel::sort(items.begin(), items.end());
-#else
-    std::sort(items.begin(), items.end());
-#endif
-    std::vector<std::uint32_t> order(n);
-    std::vector<std::uint64_t> keys(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        keys[i] = items[i].key;
-        order[i] = items[i].index;
-    }
-    ps.permute(order);
-    return keys;
+    for (std::size_t i = 0; i < n; ++i) keys[i] = sfc_key(x[i], y[i], z[i], box, kind);
+    return sort_by_keys(ps, keys);
 }
 
 } // namespace exasph
