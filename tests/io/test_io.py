@@ -98,8 +98,9 @@ def test_sigkill(r):
 def test_sigterm(r):
     """SIGTERM makes the run write a checkpoint at the end of the current step and exit 143."""
     ref, run = r.work / "ref_term", r.work / "term"
-    r.run(1, *RUN, "-s", 40, "--checkpoint-every", 40, "--out", ref)
-    p = subprocess.Popen(r.cmd(1, *RUN, "-s", 40, "--checkpoint-every", 1000, "--out", run),
+    # Long enough (~3 s) that the signal, sent ~0.3 s after the first step, lands mid-run.
+    r.run(1, *RUN, "-s", 400, "--checkpoint-every", 400, "--out", ref)
+    p = subprocess.Popen(r.cmd(1, *RUN, "-s", 400, "--checkpoint-every", 1000, "--out", run),
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     wait_for(run / "diagnostics.csv")
     time.sleep(0.3)
@@ -109,9 +110,9 @@ def test_sigterm(r):
     cps = sorted(run.glob("checkpoint_*.h5"))
     assert len(cps) == 1, f"expected one checkpoint, found {cps}"
     assert "stopped by a signal" in out
-    r.run(1, "--restart", cps[0], "-s", 40, "--threads", 1, "--checkpoint-every", 40,
+    r.run(1, "--restart", cps[0], "-s", 400, "--threads", 1, "--checkpoint-every", 400,
           "--out", run)
-    compare(ref / "checkpoint_000040.h5", run / "checkpoint_000040.h5", 0.0)
+    compare(ref / "checkpoint_000400.h5", run / "checkpoint_000400.h5", 0.0)
 
 
 def test_snapshot(r):
