@@ -70,6 +70,7 @@ class Domain {
         asg_.leaf_keys = tree_.keys();
         asg_.leaf_count = counts;
         std::vector<int> dest(ps.size());
+#pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < ps.size(); ++i) dest[i] = asg_.owner[leaf[i]];
         const bool moved = migrate_particles(ps, dest, coll_.rank(), coll_.size(),
                                              asg_.count[coll_.rank()], coll_.comm(), kTagMigrate);
@@ -89,20 +90,46 @@ class Domain {
                              coll_.comm(), kTagHalo);
     }
 
-    std::size_t n_owned() const { return n_owned_; }
+    std::size_t n_owned() const {
+        return n_owned_;
+    }
     // Whether some rank raised an alarm in the last sync (which then did nothing else).
-    bool alarm() const { return alarm_; }
-    std::size_t n_halo() const { return plan_.n_halo; }
-    const Octree<T>& local_tree() const { return local_tree_; }
-    const Octree<T>& halo_tree() const { return halo_tree_; }
-    const Assignment& assignment() const { return asg_; }
-    const GlobalTree& global_tree() const { return tree_; }
-    const HaloPlan& halo_plan() const { return plan_; }
-    Collectives& collectives() { return coll_; }
-    MPI_Comm comm() const { return coll_.comm(); }
-    int rank() const { return coll_.rank(); }
-    int nranks() const { return coll_.size(); }
-    CurveKind curve() const { return curve_; }
+    bool alarm() const {
+        return alarm_;
+    }
+    std::size_t n_halo() const {
+        return plan_.n_halo;
+    }
+    const Octree<T>& local_tree() const {
+        return local_tree_;
+    }
+    const Octree<T>& halo_tree() const {
+        return halo_tree_;
+    }
+    const Assignment& assignment() const {
+        return asg_;
+    }
+    const GlobalTree& global_tree() const {
+        return tree_;
+    }
+    const HaloPlan& halo_plan() const {
+        return plan_;
+    }
+    Collectives& collectives() {
+        return coll_;
+    }
+    MPI_Comm comm() const {
+        return coll_.comm();
+    }
+    int rank() const {
+        return coll_.rank();
+    }
+    int nranks() const {
+        return coll_.size();
+    }
+    CurveKind curve() const {
+        return curve_;
+    }
 
     // Local min/max of the owned positions as six SumMax elements (max of hi, max of -lo).
     static void local_extent(const ParticleSet<T>& ps, std::size_t n, SumMax* out) {

@@ -58,6 +58,10 @@ void unpack_particles(ParticleSet<T>& ps, std::size_t offset, std::size_t count,
 template <class T>
 bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me, int nranks,
                        std::uint64_t expected, MPI_Comm comm, int tag) {
+    std::size_t leaving = 0;
+#pragma omp parallel for schedule(static) reduction(+ : leaving)
+    for (std::size_t i = 0; i < dest.size(); ++i) leaving += dest[i] != me;
+    if (leaving == 0 && expected == dest.size()) return false; // the common case on one rank
     FieldSelection sel{fields_with_role(kState), true};
     const std::size_t per = sel.doubles_per_particle();
     std::vector<std::vector<std::uint32_t>> out(nranks);

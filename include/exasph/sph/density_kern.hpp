@@ -34,18 +34,23 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb, const
     double k_sum = xm[a] * w0; // w(v) sums, divided by h^3 at the end
     double dh_sum = xm[a] * T(3) * w0;
     std::uint32_t nc = 0;
+    // Pairs beyond 2 h_a (listed because of h_b) are masked rather than skipped, so that the
+    // loop vectorises.
+    const PeriodicImage<T> image(box);
+#pragma omp simd reduction(+ : k_sum, dh_sum, nc)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         std::uint32_t b = nb.index[n];
-        T dx = box.min_image(x[b] - x[a], 0);
-        T dy = box.min_image(y[b] - y[a], 1);
-        T dz = box.min_image(z[b] - z[a], 2);
+        T dx = image(x[b] - x[a], 0);
+        T dy = image(y[b] - y[a], 1);
+        T dz = image(z[b] - z[a], 2);
         T r2 = dx * dx + dy * dy + dz * dz;
-        if (r2 >= T(4) * ha * ha) continue;
-        ++nc;
+        T inside = T(r2 < T(4) * ha * ha);
+        nc += std::uint32_t(inside);
         T v = std::sqrt(r2) * inv_h;
         T w = k.value(v);
-        k_sum += xm[b] * w;
-        dh_sum += xm[b] * (T(3) * w + v * k.derivative(v));
+        T xb = xm[b] * inside;
+        k_sum += xb * w;
+        dh_sum += xb * (T(3) * w + v * k.derivative(v));
     }
     T h3 = ha * ha * ha;
     T kx = static_cast<T>(k_sum) / h3;

@@ -16,12 +16,18 @@ struct KernelView {
     T inv_dv;    // (kSize - 1) / 2
     int size;
 
+    // Branch-free, so that neighbour loops calling it vectorise: the index is clamped and the
+    // value multiplied by 0 at and beyond v = 2 (a select there makes GCC move the table loads
+    // into a branch, which it then cannot vectorise).
+    // The index is clamped as unsigned, so that any v (huge or NaN from a corrupted particle,
+    // whose conversion gives INT_MIN) reads inside the table.
     EXASPH_HD T lookup(const T* table, T v) const {
         T s = v * inv_dv;
         int i = static_cast<int>(s);
-        if (i >= size - 1) return T(0);
+        int j = unsigned(i) < unsigned(size - 2) ? i : size - 2;
         T f = s - T(i);
-        return table[i] + f * (table[i + 1] - table[i]);
+        T w = table[j] + f * (table[j + 1] - table[j]);
+        return w * T(s < T(size - 1));
     }
     EXASPH_HD T value(T v) const { return lookup(w, v); }
     EXASPH_HD T derivative(T v) const { return lookup(dw, v); }

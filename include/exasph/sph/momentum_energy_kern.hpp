@@ -101,13 +101,14 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
     T ga[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     if (diss.reconstruct)
         for (int c = 0; c < 9; ++c) ga[c] = p[kVelocityGradientFields[c]][a];
+    const PeriodicImage<T> image(box);
 #pragma omp simd reduction(+ : ax, ay, az, du_p, du_av, divv, du_cond) reduction(max : vsig_max)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         const std::uint32_t b = nb.index[n];
         // d = x_b - x_a = -r_ab
-        T dx = box.min_image(x[b] - x[a], 0);
-        T dy = box.min_image(y[b] - y[a], 1);
-        T dz = box.min_image(z[b] - z[a], 2);
+        T dx = image(x[b] - x[a], 0);
+        T dy = image(y[b] - y[a], 1);
+        T dz = image(z[b] - z[a], 2);
         T r = std::sqrt(dx * dx + dy * dy + dz * dz);
         T hb = h[b], inv_hb = T(1) / hb;
         T wa = k.value(r * inv_ha) * inv_ha3;
@@ -119,7 +120,8 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
         T vabx = vx[a] - vx[b], vaby = vy[a] - vy[b], vabz = vz[a] - vz[b];
         // v_ab . r_ab with r_ab = -d
         T vr = -(vabx * dx + vaby * dy + vabz * dz);
-        T w_ab = r > T(0) ? vr / r : T(0);
+        T w_ab = vr / (r > T(0) ? r : T(1)); // 0 for r = 0, where vr = 0
+
         T vsig = c[a] + c[b] - T(3) * w_ab;
         vsig_max = vsig > vsig_max ? vsig : vsig_max;
         // alpha_ab = (alpha_a + alpha_b)/2 keeps Pi_ab symmetric (= alpha for a constant alpha)

@@ -1,5 +1,6 @@
 #pragma once
 #include <array>
+#include <limits>
 
 #include "exasph/util/annotate.hpp"
 #include "exasph/util/vec3.hpp"
@@ -54,6 +55,23 @@ struct Box {
         if (x >= hi[axis]) return -len;
         if (x < lo[axis]) return len;
         return T(0);
+    }
+};
+
+// The minimum image of Box::min_image as branch-free selects with loop-invariant operands, for
+// neighbour loops that must vectorise; an open axis gets an infinite half-period (never wraps).
+template <class T>
+struct PeriodicImage {
+    T len[3], half[3];
+    EXASPH_HD explicit PeriodicImage(const Box<T>& box) {
+        for (int d = 0; d < 3; ++d) {
+            len[d] = box.periodic[d] ? box.hi[d] - box.lo[d] : T(0);
+            half[d] = box.periodic[d] ? T(0.5) * len[d] : std::numeric_limits<T>::infinity();
+        }
+    }
+    EXASPH_HD T operator()(T d, int axis) const {
+        d = d > half[axis] ? d - len[axis] : d;
+        return d < -half[axis] ? d + len[axis] : d;
     }
 };
 

@@ -1,6 +1,7 @@
 // Acceptance 1 (issue 2): normalisation and lookup-table accuracy of the sinc kernels.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -82,4 +83,10 @@ TEST(SincKernelTable, ZeroOutsideSupport) {
     EXPECT_EQ(view.value(2.0), 0.0);
     EXPECT_EQ(view.value(3.5), 0.0);
     EXPECT_GT(view.value(1.99), 0.0);
+    // Far outside (a corrupted h makes v huge; the integer index would overflow): zero, and no
+    // read outside the table.
+    EXPECT_EQ(view.value(1e30), 0.0);
+    EXPECT_EQ(view.derivative(1e12), 0.0);
+    EXPECT_TRUE(std::isnan(view.value(std::numeric_limits<double>::quiet_NaN())) ||
+                view.value(std::numeric_limits<double>::quiet_NaN()) == 0.0);
 }
