@@ -72,8 +72,9 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const Particl
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
     T t11 = 0, t12 = 0, t13 = 0, t22 = 0, t23 = 0, t33 = 0;
     T d[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    // Pairs beyond 2 h_a have W = 0 (the table is 0 there): no test needed. Without the velocity
-    // gradient the loop vectorises (omp simd); with it, the nine extra sums run in a plain loop.
+    // Pairs beyond 2 h_a have W = 0 (the table is 0 there): no test needed, so the loop
+    // vectorises (omp simd). The velocity gradient's nine sums, wanted only with --av-limiter,
+    // take a second, plain pass.
     const PeriodicImage<T> image(box);
     auto pair = [&](std::uint32_t b, T& dx, T& dy, T& dz) {
         dx = image(x[b] - x[a], 0);
@@ -81,29 +82,22 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const Particl
         dz = image(z[b] - z[a], 2);
         return xm[b] / kx[b] * k.value(std::sqrt(dx * dx + dy * dy + dz * dz) * inv_h);
     };
-    if (!grad) {
 #pragma omp simd reduction(+ : t11, t12, t13, t22, t23, t33)
-        for (std::uint32_t n = 0; n < nb.count; ++n) {
-            T dx, dy, dz;
-            T vw = pair(nb.index[n], dx, dy, dz); // V_b W_ab(h_a)
-            t11 += dx * dx * vw;
-            t12 += dx * dy * vw;
-            t13 += dx * dz * vw;
-            t22 += dy * dy * vw;
-            t23 += dy * dz * vw;
-            t33 += dz * dz * vw;
-        }
-    } else {
+    for (std::uint32_t n = 0; n < nb.count; ++n) {
+        T dx, dy, dz;
+        T vw = pair(nb.index[n], dx, dy, dz); // V_b W_ab(h_a)
+        t11 += dx * dx * vw;
+        t12 += dx * dy * vw;
+        t13 += dx * dz * vw;
+        t22 += dy * dy * vw;
+        t23 += dy * dz * vw;
+        t33 += dz * dz * vw;
+    }
+    if (grad) {
         for (std::uint32_t n = 0; n < nb.count; ++n) {
             const std::uint32_t b = nb.index[n];
             T dx, dy, dz;
             T vw = pair(b, dx, dy, dz);
-            t11 += dx * dx * vw;
-            t12 += dx * dy * vw;
-            t13 += dx * dz * vw;
-            t22 += dy * dy * vw;
-            t23 += dy * dz * vw;
-            t33 += dz * dz * vw;
             const T dv[3] = {vx[b] - vx[a], vy[b] - vy[a], vz[b] - vz[a]};
             for (int i = 0; i < 3; ++i) {
                 d[3 * i] += dv[i] * dx * vw;

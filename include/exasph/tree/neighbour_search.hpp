@@ -161,7 +161,7 @@ class NeighbourLists {
     std::uint32_t search_all(const Octree<T>& owned, const Octree<T>* halos, const SearchView<T>& p,
                              const Box<T>& box, NeighbourCriterion crit) {
         const auto& leaves = owned.leaves();
-        const PeriodicImage image(box);
+        const PeriodicImage<T> image(box);
         std::uint32_t max_count = 0;
 #pragma omp parallel reduction(max : max_count)
         {
@@ -213,18 +213,8 @@ class NeighbourLists {
         }
     }
 
-    // The minimum image as branch-free selects with loop-invariant operands, so that the
-    // distance loop below vectorises; an open axis gets an infinite half-period (never wraps).
-    // Gives the same result as Box::min_image.
-    struct PeriodicImage {
-        T len[3], half[3];
-        explicit PeriodicImage(const Box<T>& box) {
-            for (int d = 0; d < 3; ++d) {
-                len[d] = box.periodic[d] ? box.hi[d] - box.lo[d] : T(0);
-                half[d] = box.periodic[d] ? T(0.5) * len[d] : std::numeric_limits<T>::infinity();
-            }
-        }
-    };
+    // The minimum image (PeriodicImage, util/box.hpp) with the period and half-period hoisted
+    // into scalars by the caller, so that the distance loops vectorise.
     static T wrap(T d, T len, T half) {
         d = d > half ? d - len : d;
         return d < -half ? d + len : d;
@@ -254,7 +244,7 @@ class NeighbourLists {
     // (room for every candidate particle); returns the count.
     static std::uint32_t neighbours_in(const std::vector<const OctreeNode<T>*>& candidates,
                                        CandidateBoxes& boxes, const SearchView<T>& p,
-                                       const PeriodicImage& im, NeighbourCriterion crit,
+                                       const PeriodicImage<T>& im, NeighbourCriterion crit,
                                        std::uint32_t i, std::uint32_t* out) {
         const T pos[3] = {p.x[i], p.y[i], p.z[i]};
         const T hi = p.h[i];
@@ -320,9 +310,9 @@ class NeighbourLists {
     // arithmetic as the portable loop (the minimum image, then r2 < 4 max(h_a, h_b)^2).
     static std::uint32_t scan_leaf_avx512(std::uint32_t begin, std::uint32_t end,
                                           const SearchView<double>& p, const double pos[3],
-                                          double hi, bool symmetric, const PeriodicImage& im,
-                                          std::uint32_t self, std::uint32_t* out,
-                                          std::uint32_t count) {
+                                          double hi, bool symmetric,
+                                          const PeriodicImage<double>& im, std::uint32_t self,
+                                          std::uint32_t* out, std::uint32_t count) {
         const __m512d px = _mm512_set1_pd(pos[0]), py = _mm512_set1_pd(pos[1]),
                       pz = _mm512_set1_pd(pos[2]), vhi = _mm512_set1_pd(hi);
         const __m512d len[3] = {_mm512_set1_pd(im.len[0]), _mm512_set1_pd(im.len[1]),

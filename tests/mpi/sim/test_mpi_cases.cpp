@@ -59,4 +59,5 @@ TEST_P(MpiCases, MatchOneRank) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, MpiCases, ::testing::Values("sedov", "noh", "noh-limiter", "evrard"));
+INSTANTIATE_TEST_SUITE_P(Cases, MpiCases,
+                         ::testing::Values("sedov", "noh", "noh-limiter", "evrard"));
