@@ -3,7 +3,7 @@
 
 #include "exasph/domain/sfc_order.hpp"
 #include "exasph/particles/particle_set.hpp"
-#include "exasph/tree/neighbour_search.hpp"
+#include "exasph/tree/neighbour_lists.hpp"
 #include "exasph/util/box.hpp"
 
 namespace exasph::testref {

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <mpi.h>
@@ -60,12 +61,20 @@ class Domain {
     // Uses exactly one collective (the global tree counts and maximum h), which also carries a
     // per-rank alarm (e.g. corrupted state found before the step): when any rank raised one,
     // sync stops right after the collective, changing nothing, and alarm() is true on all ranks.
-    void sync(ParticleSet<T>& ps, const Box<T>& box, bool local_alarm = false) {
+    // `on_clear`, if given, runs once every rank is known to have raised no alarm, before the
+    // particles move (the state is still the one checked: a verified rollback point).
+    template <class OnClear = void (*)()>
+    void sync(ParticleSet<T>& ps, const Box<T>& box, bool local_alarm = false,
+              OnClear&& on_clear = nullptr) {
         ps.resize(n_owned_); // drop last step's halos
         auto keys = compute_keys(ps, box);
         auto leaf = leaves_of(keys);
         auto counts = global_counts(ps, leaf, local_alarm);
         if (alarm_) return;
+        if constexpr (!std::is_pointer_v<std::decay_t<OnClear>>)
+            on_clear();
+        else if (on_clear)
+            on_clear();
         asg_ = assign_leaves(counts, coll_.size());
         asg_.leaf_keys = tree_.keys();
         asg_.leaf_count = counts;

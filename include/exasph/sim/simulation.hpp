@@ -21,7 +21,7 @@
 #include "exasph/sph/sinc_kernel.hpp"
 #include "exasph/sph/smoothing_length.hpp"
 #include "exasph/sph/timestep.hpp"
-#include "exasph/tree/neighbour_search.hpp"
+#include "exasph/tree/neighbour_lists.hpp"
 #include "exasph/util/timer.hpp"
 
 namespace exasph {
@@ -115,10 +115,16 @@ class Simulation {
             fault_done_ = true;                   // once: a rollback replays the step cleanly
         }
         const bool alarm = sdc_on() && !verify_state();
-        domain_.sync(ps_, box_, alarm);
+        // Every sdc_rollback_every steps the checked state becomes the rollback point, once the
+        // sync's collective has shown that no rank found a problem: it replaces the previous
+        // point in place (one copy of the state, not two).
+        const bool keep_point =
+            cfg_.on_sdc == "rollback" && step_ % std::max(cfg_.sdc_rollback_every, 1) == 0;
+        domain_.sync(ps_, box_, alarm, [&] {
+            if (keep_point) save_rollback_point();
+        });
         if (domain_.alarm())
             return recover("the state check before step " + std::to_string(step_ + 1), step_ + 1);
-        if (pending_.valid) rollback_ = std::move(pending_), pending_.valid = false;
         timer_.stop(kSync);
         find_neighbours();
         timer_.stop(kNeighbours);
@@ -340,26 +346,24 @@ class Simulation {
     }
 
     // Checks the owned state at rest (hashes sealed at the end of the last step, physics
-    // invariants); keeps a rollback point every sdc_rollback_every steps (committed once the sync
-    // has confirmed that no rank found a problem). Returns false on corruption.
+    // invariants). Returns false on corruption.
     bool verify_state() {
         sdc_detail_ =
             guard_.check(ps_, n_owned(), box_, dt_m1_, press_ok_, eos_.kind == EosKind::ideal_gas);
-        if (!sdc_detail_.empty()) return false;
-        if (cfg_.on_sdc == "rollback" && step_ % std::max(cfg_.sdc_rollback_every, 1) == 0) {
-            pending_.state.save(ps_, n_owned());
-            pending_.rs = restart_state();
-            pending_.box = box_;
-            pending_.diag = diag_;
-            pending_.valid = true;
-        }
-        return true;
+        return sdc_detail_.empty();
+    }
+
+    void save_rollback_point() {
+        rollback_.state.save(ps_, n_owned());
+        rollback_.rs = restart_state();
+        rollback_.box = box_;
+        rollback_.diag = diag_;
+        rollback_.valid = true;
     }
 
     // All ranks: after a detection (by `where`, in or before step `step`), roll back to the last
     // verified state (or abort).
     void recover(const std::string& where, std::int64_t step) {
-        pending_.valid = false;
         ++recoveries_;
         sdc_step_ = step;
         const bool can = cfg_.on_sdc == "rollback" && rollback_.valid && recoveries_ <= 100 &&
@@ -462,7 +466,7 @@ class Simulation {
         bool valid = false;
     };
     StateGuard<T> guard_;
-    RollbackPoint rollback_, pending_;
+    RollbackPoint rollback_;
     FaultSpec fault_;
     bool fault_done_ = false, press_ok_ = false, recovered_ = false;
     double mass0_ = 0;

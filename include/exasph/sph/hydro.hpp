@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -8,33 +9,42 @@
 #include "exasph/sph/eos.hpp"
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
-#include "exasph/tree/neighbour_search.hpp"
+#include "exasph/tree/neighbour_lists.hpp"
 #include "exasph/util/error.hpp"
 
 // OpenMP drivers of the SPH phases: thin loops over the particles that have neighbour lists
 // (the owned ones, [0, nl.size())) calling the pure kernels.
 namespace exasph {
 
-inline constexpr int kHydroChunk = 128;
-
-template <class T>
-NeighbourSpan neighbours_of(const NeighbourLists<T>& nl, std::uint32_t i) {
-    return {nl.list(i), nl.count(i)};
+// Calls body(i, neighbours of i) for every particle with a list, in parallel over the leaf
+// groups (each thread expands its groups' lists into its own buffer).
+template <class T, class Body>
+void for_each_neighbourhood(const NeighbourLists<T>& nl, Body&& body) {
+    const auto groups = static_cast<std::int64_t>(nl.num_groups());
+#pragma omp parallel
+    {
+        typename NeighbourLists<T>::Decoder dec(nl);
+#pragma omp for schedule(dynamic, 8)
+        for (std::int64_t g = 0; g < groups; ++g) {
+            dec.start(std::size_t(g));
+            for (std::uint32_t i = nl.group_begin(std::size_t(g)); i < nl.group_end(std::size_t(g));
+                 ++i)
+                body(i, dec.next());
+        }
+    }
 }
 
 template <class T>
 void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
                      const KernelView<T>& k) {
     auto p = make_view(ps);
-    const auto n = static_cast<std::int64_t>(nl.size());
-#pragma omp parallel for schedule(dynamic, kHydroChunk)
-    for (std::int64_t i = 0; i < n; ++i) {
-        auto r = density_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k);
+    for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
+        auto r = density_kern(i, nb, p, box, k);
         p[Field::rho][i] = r.rho;
         p[Field::kx][i] = r.kx;
         p[Field::omega][i] = r.omega;
         p[Field::nc][i] = T(r.nc);
-    }
+    });
 }
 
 template <class T>
@@ -59,27 +69,28 @@ void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& 
                  const KernelView<T>& k, bool with_gradient = false) {
     if (with_gradient) ps.enable(kHaloGrad);
     auto p = make_view(ps);
-    const auto n = static_cast<std::int64_t>(nl.size());
-    std::int64_t first_singular = n;
-#pragma omp parallel for schedule(dynamic, kHydroChunk) reduction(min : first_singular)
-    for (std::int64_t i = 0; i < n; ++i) {
+    const auto n = static_cast<std::uint32_t>(nl.size());
+    std::uint32_t first_singular = n;
+    for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
         VelocityGradient<T> g;
-        auto r = iad_kern(std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k,
-                          with_gradient ? &g : nullptr);
+        auto r = iad_kern(i, nb, p, box, k, with_gradient ? &g : nullptr);
         if (with_gradient)
             for (int c = 0; c < 9; ++c) p[kVelocityGradientFields[c]][i] = g.g[c];
-        if (r.singular && i < first_singular) first_singular = i;
+        if (r.singular) {
+#pragma omp critical(exasph_iad_singular)
+            first_singular = std::min(first_singular, i);
+        }
         p[Field::c11][i] = r.c11;
         p[Field::c12][i] = r.c12;
         p[Field::c13][i] = r.c13;
         p[Field::c22][i] = r.c22;
         p[Field::c23][i] = r.c23;
         p[Field::c33][i] = r.c33;
-    }
+    });
     if (first_singular < n)
         throw Error("IAD matrix tau is singular for particle id " +
                     std::to_string(ps.id[first_singular]) + " (" +
-                    std::to_string(nl.count(std::uint32_t(first_singular))) +
+                    std::to_string(nl.list(first_singular).size()) +
                     " neighbours): too few or coplanar neighbours");
 }
 
@@ -88,21 +99,16 @@ void compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, co
                              const KernelView<T>& k, const Dissipation<T>& diss = {}) {
     auto p = make_view(ps);
     const bool extras = diss.reconstruct || diss.alpha_u > T(0);
-    const auto n = static_cast<std::int64_t>(nl.size());
-#pragma omp parallel for schedule(dynamic, kHydroChunk)
-    for (std::int64_t i = 0; i < n; ++i) {
-        auto r = extras
-                     ? momentum_energy_kern<T, true>(
-                           std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k, diss)
-                     : momentum_energy_kern<T, false>(
-                           std::uint32_t(i), neighbours_of(nl, std::uint32_t(i)), p, box, k, diss);
+    for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
+        auto r = extras ? momentum_energy_kern<T, true>(i, nb, p, box, k, diss)
+                        : momentum_energy_kern<T, false>(i, nb, p, box, k, diss);
         p[Field::ax][i] = r.ax;
         p[Field::ay][i] = r.ay;
         p[Field::az][i] = r.az;
         p[Field::du][i] = r.du;
         p[Field::vsig_max][i] = r.vsig_max;
         p[Field::divv][i] = r.divv;
-    }
+    });
 }
 
 } // namespace exasph

@@ -4,7 +4,7 @@
 
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/sph/kernel_table.hpp"
-#include "exasph/sph/neighbour_view.hpp"
+#include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/box.hpp"
 
 namespace exasph {

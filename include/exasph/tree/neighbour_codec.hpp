@@ -1,0 +1,164 @@
+#pragma once
+#include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
+// Building blocks of the compact neighbour lists (tree/neighbour_lists.hpp): variable-length
+// integers, bit fields read from byte records, the expansion of a hit mask into particle indices,
+// and a per-thread arena that holds the records. No SPH here.
+namespace exasph::codec {
+
+// Bytes that may be read past the end of a record (the 64-bit loads below): every record is
+// followed by at least this many bytes of its block.
+inline constexpr std::size_t kReadPad = 8;
+
+// LEB128: seven bits per byte, low bits first; small values (the usual leaf sizes and gaps)
+// take one byte.
+inline void put_varint(std::vector<std::uint8_t>& out, std::uint32_t v) {
+    while (v >= 0x80u) {
+        out.push_back(std::uint8_t(v | 0x80u));
+        v >>= 7;
+    }
+    out.push_back(std::uint8_t(v));
+}
+
+inline std::uint32_t get_varint(const std::uint8_t*& p) {
+    std::uint32_t v = 0;
+    for (int shift = 0;; shift += 7) {
+        const std::uint8_t b = *p++;
+        v |= std::uint32_t(b & 0x7Fu) << shift;
+        if (!(b & 0x80u)) return v;
+    }
+}
+
+inline std::uint64_t load_u64(const std::uint8_t* p) {
+    std::uint64_t v;
+    std::memcpy(&v, p, sizeof v);
+    return v; // little-endian: bit k of the record is bit k of the word
+}
+
+// `n` (<= 32) bits of `base` starting at bit `pos` (bit k of byte b is bit 8b + k).
+inline std::uint32_t load_bits(const std::uint8_t* base, std::uint64_t pos, unsigned n) {
+    const std::uint64_t w = load_u64(base + (pos >> 3)) >> (pos & 7u);
+    return std::uint32_t(w & ((std::uint64_t(1) << n) - 1u));
+}
+
+// `n` (<= 64) bits starting at a byte boundary.
+inline std::uint64_t load_word(const std::uint8_t* base, unsigned n) {
+    const std::uint64_t w = load_u64(base);
+    return n >= 64 ? w : w & ((std::uint64_t(1) << n) - 1u);
+}
+
+// Writes first + k for every set bit k of `mask` (ascending) to `out`; returns how many. `out`
+// must have room for 32 more indices than the count (the vector path stores whole registers).
+inline std::uint32_t expand_mask(std::uint32_t mask, std::uint32_t first, std::uint32_t* out) {
+#if defined(__AVX512F__)
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m512i lo = _mm512_add_epi32(_mm512_set1_epi32(int(first)), lane);
+    const auto m0 = __mmask16(mask & 0xFFFFu);
+    _mm512_storeu_si512(out, _mm512_maskz_compress_epi32(m0, lo));
+    const auto c0 = std::uint32_t(std::popcount(mask & 0xFFFFu));
+    if (mask >> 16) {
+        const __m512i hi = _mm512_add_epi32(lo, _mm512_set1_epi32(16));
+        _mm512_storeu_si512(out + c0, _mm512_maskz_compress_epi32(__mmask16(mask >> 16), hi));
+    }
+    return std::uint32_t(std::popcount(mask));
+#else
+    std::uint32_t c = 0;
+    while (mask) {
+        out[c++] = first + std::uint32_t(std::countr_zero(mask));
+        mask &= mask - 1u;
+    }
+    return c;
+#endif
+}
+
+// Sets bit `pos` of a zero-initialised byte record.
+inline void set_bit(std::uint8_t* base, std::uint64_t pos) {
+    base[pos >> 3] |= std::uint8_t(1u << (pos & 7u));
+}
+
+// Appends bit fields of up to 32 bits to a byte record (bit k of the record is bit k % 8 of byte
+// k / 8). The destination needs room for the whole record plus kReadPad bytes.
+class BitWriter {
+  public:
+    explicit BitWriter(std::uint8_t* dst) : dst_(dst) {}
+    void put(std::uint32_t bits, unsigned n) {
+        acc_ |= std::uint64_t(bits) << used_;
+        used_ += n;
+        if (used_ >= 32) {
+            const auto word = std::uint32_t(acc_);
+            std::memcpy(dst_, &word, 4);
+            dst_ += 4;
+            acc_ >>= 32;
+            used_ -= 32;
+        }
+    }
+    // Writes the pending bits and moves to the next byte boundary.
+    void align() {
+        std::memcpy(dst_, &acc_, 8); // within the padding
+        dst_ += (used_ + 7) / 8;
+        acc_ = 0;
+        used_ = 0;
+    }
+
+  private:
+    std::uint8_t* dst_;
+    std::uint64_t acc_ = 0;
+    unsigned used_ = 0;
+};
+
+// Records in large blocks that live as long as the arena: one arena per thread, so that storing
+// needs no lock; reset() reuses the blocks for the next build. Records never move.
+class Arena {
+  public:
+    const std::uint8_t* store(const std::vector<std::uint8_t>& rec) {
+        const std::size_t need = rec.size() + kReadPad;
+        while (cur_ < blocks_.size() && used_ + need > blocks_[cur_].size) {
+            ++cur_;
+            used_ = 0;
+        }
+        if (cur_ == blocks_.size()) {
+            const std::size_t size = std::max(kBlockBytes, need);
+            blocks_.push_back({std::unique_ptr<std::uint8_t[]>(new std::uint8_t[size]), size});
+            used_ = 0;
+        }
+        std::uint8_t* dst = blocks_[cur_].data.get() + used_;
+        std::memcpy(dst, rec.data(), rec.size());
+        std::memset(dst + rec.size(), 0, kReadPad); // the padding that loads may read
+        used_ += rec.size();
+        return dst;
+    }
+
+    // Starts a new build; blocks that the previous build did not reach are freed.
+    void reset() {
+        if (!blocks_.empty()) blocks_.resize(std::min(blocks_.size(), cur_ + 1));
+        cur_ = 0;
+        used_ = 0;
+    }
+
+    std::size_t bytes() const {
+        std::size_t b = 0;
+        for (const auto& bl : blocks_) b += bl.size;
+        return b;
+    }
+
+  private:
+    static constexpr std::size_t kBlockBytes = std::size_t(1) << 20;
+    struct Block {
+        std::unique_ptr<std::uint8_t[]> data;
+        std::size_t size;
+    };
+    std::vector<Block> blocks_;
+    std::size_t cur_ = 0, used_ = 0;
+};
+
+} // namespace exasph::codec
