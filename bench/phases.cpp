@@ -47,9 +47,7 @@ struct Setup {
             ps[Field::m][i] = 1.0 / double(n);
             ps[Field::h][i] = 0.5 * dx * std::cbrt(3.0 * 100 / (4 * M_PI));
             ps[Field::u][i] = 1.0;
-            ps[Field::alpha][i] = 1.0;
         }
-        ps[Field::xm] = ps[Field::m];
         keys = sort_along_curve(ps, box, CurveKind::hilbert);
         build_tree();
         search();

@@ -39,6 +39,10 @@ expect_rejected "--courant" --courant 0
 expect_rejected "--t-end" --t-end -1
 expect_rejected "--threads" --threads 0
 expect_rejected "--av-limiter" -n 10 -s 1 -w 1 -f rho,dvx_dx
+# Optional fields exist only in runs that carry them (alpha: --av-switch, phi: gravity).
+expect_rejected "--av-switch" -n 10 -s 1 -w 1 -f rho,alpha
+expect_rejected "self-gravity" --init sedov -n 10 -s 1 -w 1 -f phi
+expect_rejected "carries no field" --init sedov -n 10 -s 2 --inject-fault 1:alpha:3:40
 expect_rejected "smoothing length" -n 4 -s 1
 expect_rejected "--theta" --init evrard --theta 1.5
 expect_rejected "open box" --init sedov --lattice -n 10 --G 1 -s 1

@@ -23,10 +23,13 @@ struct ParticleState {
 inline std::vector<ParticleState> owned_state(const Simulation<double>& sim) {
     const auto& ps = sim.particles();
     std::vector<ParticleState> out(sim.n_owned());
+    const bool gravity = ps.enabled(Field::phi);
     for (std::size_t i = 0; i < out.size(); ++i)
-        out[i] = {ps.id[i],         ps[Field::rho][i], ps[Field::vx][i], ps[Field::vy][i],
-                  ps[Field::vz][i], ps[Field::u][i],   ps[Field::ax][i], ps[Field::ay][i],
-                  ps[Field::az][i], ps[Field::phi][i]};
+        out[i] = {ps.id[i],         ps[Field::rho][i],
+                  ps[Field::vx][i], ps[Field::vy][i],
+                  ps[Field::vz][i], ps[Field::u][i],
+                  ps[Field::ax][i], ps[Field::ay][i],
+                  ps[Field::az][i], gravity ? ps[Field::phi][i] : 0.0};
     return out;
 }
 

@@ -65,6 +65,8 @@ InitialConditions<T> make_square_patch(const SquarePatchParams& sp, int rank = 0
     const std::uint64_t last = n * std::uint64_t(rank + 1) / std::uint64_t(nranks);
     auto& ps = ic.particles;
     ps.resize(last - first);
+    ps.enable(Field::rho0); // the Tait EOS's reference state
+    ps.enable(Field::p0);
 #pragma omp parallel for schedule(static)
     for (std::uint64_t idx = first; idx < last; ++idx) {
         const std::uint64_t s = idx - first; // slot on this rank

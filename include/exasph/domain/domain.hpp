@@ -84,8 +84,10 @@ class Domain {
         const bool moved = migrate_particles(ps, dest, coll_.rank(), coll_.size(),
                                              asg_.count[coll_.rank()], coll_.comm(), kTagMigrate);
         n_owned_ = ps.size();
+        std::vector<int>().swap(dest); // the sort below is the step's memory peak
+        std::vector<std::uint32_t>().swap(leaf);
         // The keys computed above still belong to the particles when none left or arrived.
-        keys = moved ? sort_along_curve(ps, box, curve_) : sort_by_keys(ps, keys);
+        keys = moved ? sort_along_curve(ps, box, curve_) : sort_by_keys(ps, std::move(keys));
         local_tree_.build(keys.data(), std::uint32_t(n_owned_), leaf_size_);
         local_tree_.update_bounds(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
                                   ps.data(Field::h));
@@ -95,7 +97,7 @@ class Domain {
 
     // Sends the fields carrying `roles` from owners to the halo copies.
     void exchange_halos(ParticleSet<T>& ps, std::uint8_t roles) {
-        exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{fields_with_role(roles), false},
+        exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{ps.fields(roles), false},
                              coll_.comm(), kTagHalo);
     }
 
@@ -219,7 +221,7 @@ class Domain {
                         ps.data(Field::z), ps.data(Field::h), coll_.rank(), box);
         exchange_halo_counts(plan_, coll_.comm(), kTagHaloCount);
         ps.resize(n_owned_ + plan_.n_halo);
-        exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{fields_with_role(kHaloSync), true},
+        exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{ps.fields(kHaloSync), true},
                              coll_.comm(), kTagHalo);
         // Sources own ascending key ranges and send in SFC order: the halos arrive sorted.
         std::vector<std::uint64_t> hkeys(plan_.n_halo);

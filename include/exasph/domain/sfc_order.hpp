@@ -34,33 +34,40 @@ void fit_open_axes(Box<T>& box, const ParticleSet<T>& ps) {
 }
 
 // Sorts the particles by `keys` (one per particle: their SFC keys), ties by persistent id, and
-// returns the sorted keys.
+// returns the sorted keys (in the storage of `keys`). Scratch is kept small because the sync's
+// peak is the run's peak memory: 16-byte sort items sorted in place, freed before the fields
+// are permuted.
 template <class T>
-std::vector<std::uint64_t> sort_by_keys(ParticleSet<T>& ps,
-                                        const std::vector<std::uint64_t>& keys) {
+std::vector<std::uint64_t> sort_by_keys(ParticleSet<T>& ps, std::vector<std::uint64_t> keys) {
     struct Item {
-        std::uint64_t key, id;
+        std::uint64_t key;
         std::uint32_t index;
-        bool operator<(const Item& o) const { return key != o.key ? key < o.key : id < o.id; }
+    };
+    const std::uint64_t* id = ps.id.data();
+    auto before = [id](const Item& a, const Item& b) {
+        return a.key != b.key ? a.key < b.key : id[a.index] < id[b.index];
     };
     const std::size_t n = keys.size();
-    std::vector<Item> items(n);
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i)
-        items[i] = {keys[i], ps.id[i], static_cast<std::uint32_t>(i)};
-#if defined(_OPENMP) && defined(__GLIBCXX__)
-    __gnu_parallel::sort(items.begin(), items.end());
-#else
-    std::sort(items.begin(), items.end());
-#endif
     std::vector<std::uint32_t> order(n);
-    std::vector<std::uint64_t> sorted(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        sorted[i] = items[i].key;
-        order[i] = items[i].index;
+    {
+        std::vector<Item> items(n);
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) items[i] = {keys[i], static_cast<std::uint32_t>(i)};
+#if defined(_OPENMP) && defined(__GLIBCXX__)
+        // In place (the default multiway mergesort copies the items).
+        __gnu_parallel::sort(items.begin(), items.end(), before,
+                             __gnu_parallel::balanced_quicksort_tag());
+#else
+        std::sort(items.begin(), items.end(), before);
+#endif
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            keys[i] = items[i].key;
+            order[i] = items[i].index;
+        }
     }
     ps.permute(order);
-    return sorted;
+    return keys;
 }
 
 // Sorts the first n particles (all when n is omitted) along the space-filling curve, drops the
@@ -74,7 +81,7 @@ std::vector<std::uint64_t> sort_along_curve(ParticleSet<T>& ps, const Box<T>& bo
     const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) keys[i] = sfc_key(x[i], y[i], z[i], box, kind);
-    return sort_by_keys(ps, keys);
+    return sort_by_keys(ps, std::move(keys));
 }
 
 } // namespace exasph

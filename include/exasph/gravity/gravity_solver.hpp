@@ -239,6 +239,7 @@ class GravitySolver {
         const auto tv = tree_.view(src_);
         const auto soft = soft_.view();
         T *ax = ps.data(Field::ax), *ay = ps.data(Field::ay), *az = ps.data(Field::az);
+        ps.enable(Field::phi);
         T* phi = ps.data(Field::phi);
         const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z),
                 *h = ps.data(Field::h);

@@ -78,6 +78,7 @@ read_particle_fields(const h5::Group& g, ParticleSet<T>& ps, const std::vector<F
     for (Field f : optional) {
         if (!h5::has_link(g, std::string(field_info(f).name))) continue;
         check_length(std::string(field_info(f).name), false);
+        ps.enable(f);
         read_into(f);
     }
     if (h5::has_link(g, "id")) {
@@ -97,7 +98,7 @@ template <class T>
 void validate_input_particles(const ParticleSet<T>& ps, const std::string& path,
                               const Box<T>& box) {
     for (const auto& info : kFieldTable) {
-        if (!(info.roles & kState)) continue;
+        if (!(info.roles & kState) || !ps.enabled(info.field)) continue;
         const auto& f = ps[info.field];
         for (std::size_t i = 0; i < ps.size(); ++i)
             if (!std::isfinite(f[i]))

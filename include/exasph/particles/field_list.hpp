@@ -73,6 +73,9 @@ enum FieldRole : std::uint8_t {
     kHaloDensity = 1u << 4, // after density and EOS, before IAD
     kHaloIad = 1u << 5,     // after IAD, before momentum and energy
     kHaloGrad = 1u << 6,    // with kHaloIad, only when the velocity gradient is used
+    // Needed only by some cases or options (Tait EOS, volume elements, the AV switch, gravity,
+    // the AV limiter): no memory until ParticleSet::enable.
+    kOptional = 1u << 7,
 };
 
 struct FieldInfo {
@@ -98,8 +101,8 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::m,        "m",        "mass",        kState | kHaloSync | kSnapshot, "mass"},
     {Field::u,        "u",        "energy/mass", kState | kHaloSync | kSnapshot, "specific internal energy"},
     {Field::du_m1,    "du_m1",    "energy/mass/time", kState, "du/dt at the previous step"},
-    {Field::rho0,     "rho0",     "mass/length^3", kState, "Tait EOS reference density"},
-    {Field::p0,       "p0",       "pressure",    kState, "Tait EOS background pressure"},
+    {Field::rho0,     "rho0",     "mass/length^3", kState | kOptional, "Tait EOS reference density"},
+    {Field::p0,       "p0",       "pressure",    kState | kOptional, "Tait EOS background pressure"},
     {Field::rho,      "rho",      "mass/length^3", kDerived | kHaloDensity | kSnapshot, "density"},
     {Field::omega,    "omega",    "1",           kDerived | kHaloDensity, "grad-h correction Omega"},
     {Field::p,        "p",        "pressure",    kDerived | kHaloDensity | kSnapshot, "pressure"},
@@ -116,20 +119,20 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::du,       "du",       "energy/mass/time", kDerived | kSnapshot, "du/dt"},
     {Field::vsig_max, "vsig_max", "length/time", kDerived, "max signal velocity over neighbours"},
     {Field::nc,       "nc",       "1",           kDerived | kSnapshot, "neighbour count within 2h"},
-    {Field::alpha,    "alpha",    "1",           kState | kHaloSync | kSnapshot, "artificial viscosity alpha"},
-    {Field::divv,     "divv",     "1/time",      kDerived, "velocity divergence"},
-    {Field::xm,       "xm",       "volume^p",    kState | kHaloSync, "volume-element weight X"},
-    {Field::kx,       "kx",       "volume^(p-1)", kDerived | kHaloDensity, "volume-element normalisation k"},
-    {Field::phi,      "phi",      "energy/mass", kDerived | kSnapshot, "gravitational potential"},
-    {Field::gxx,      "dvx_dx",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvx/dx"},
-    {Field::gxy,      "dvx_dy",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvx/dy"},
-    {Field::gxz,      "dvx_dz",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvx/dz"},
-    {Field::gyx,      "dvy_dx",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvy/dx"},
-    {Field::gyy,      "dvy_dy",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvy/dy"},
-    {Field::gyz,      "dvy_dz",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvy/dz"},
-    {Field::gzx,      "dvz_dx",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvz/dx"},
-    {Field::gzy,      "dvz_dy",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvz/dy"},
-    {Field::gzz,      "dvz_dz",   "1/time",      kDerived | kHaloGrad, "velocity gradient dvz/dz"},
+    {Field::alpha,    "alpha",    "1",           kState | kHaloSync | kSnapshot | kOptional, "artificial viscosity alpha"},
+    {Field::divv,     "divv",     "1/time",      kDerived | kOptional, "velocity divergence"},
+    {Field::xm,       "xm",       "volume^p",    kState | kHaloSync | kOptional, "volume-element weight X"},
+    {Field::kx,       "kx",       "volume^(p-1)", kDerived | kHaloDensity | kOptional, "volume-element normalisation k"},
+    {Field::phi,      "phi",      "energy/mass", kDerived | kSnapshot | kOptional, "gravitational potential"},
+    {Field::gxx,      "dvx_dx",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvx/dx"},
+    {Field::gxy,      "dvx_dy",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvx/dy"},
+    {Field::gxz,      "dvx_dz",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvx/dz"},
+    {Field::gyx,      "dvy_dx",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvy/dx"},
+    {Field::gyy,      "dvy_dy",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvy/dy"},
+    {Field::gyz,      "dvy_dz",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvy/dz"},
+    {Field::gzx,      "dvz_dx",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvz/dx"},
+    {Field::gzy,      "dvz_dy",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvz/dy"},
+    {Field::gzz,      "dvz_dz",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvz/dz"},
 }};
 // clang-format on
 

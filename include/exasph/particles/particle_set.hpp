@@ -12,7 +12,8 @@
 namespace exasph {
 
 // Structure of arrays: one vector per field of kFieldTable, plus a persistent 64-bit id.
-// Optional fields (role kHaloGrad: computed only by some options) hold no memory until enabled.
+// Optional fields (role kOptional: needed only by some cases or options) hold no memory until
+// enabled; code that iterates fields for a set asks the set (fields()) for the enabled ones.
 // Invariant: every enabled field vector and `id` have size() elements; disabled ones are empty.
 template <class T>
 class ParticleSet {
@@ -28,15 +29,26 @@ class ParticleSet {
     }
 
     bool enabled(Field f) const {
-        return !(field_info(f).roles & kHaloGrad) || optional_on_[static_cast<std::size_t>(f)];
+        return !(field_info(f).roles & kOptional) || optional_on_[static_cast<std::size_t>(f)];
     }
-    // Allocates the optional fields with any of `roles` (e.g. the velocity gradient).
+    // Allocates an optional field (zero-filled).
+    void enable(Field f) {
+        if (enabled(f)) return;
+        optional_on_[static_cast<std::size_t>(f)] = true;
+        (*this)[f].assign(size(), T(0));
+    }
+    // Allocates the optional fields with any of `roles` (e.g. kHaloGrad: the velocity gradient).
     void enable(std::uint8_t roles) {
         for (const auto& info : kFieldTable)
-            if ((info.roles & kHaloGrad) && (info.roles & roles)) {
-                optional_on_[static_cast<std::size_t>(info.field)] = true;
-                (*this)[info.field].resize(size());
-            }
+            if ((info.roles & kOptional) && (info.roles & roles)) enable(info.field);
+    }
+
+    // The enabled fields carrying any of `roles`, in table order.
+    std::vector<Field> fields(std::uint8_t roles) const {
+        std::vector<Field> out;
+        for (const auto& info : kFieldTable)
+            if ((info.roles & roles) && enabled(info.field)) out.push_back(info.field);
+        return out;
     }
 
     std::vector<T>& operator[](Field f) { return fields_[static_cast<std::size_t>(f)]; }
@@ -49,9 +61,8 @@ class ParticleSet {
     // recomputed every step: they are only resized.
     void permute(const std::vector<std::uint32_t>& order, std::uint8_t roles = kState) {
         std::vector<T> scratch(order.size());
-        for (const auto& info : kFieldTable) {
-            if (!(info.roles & roles)) continue;
-            auto& f = (*this)[info.field];
+        for (Field fld : fields(roles)) {
+            auto& f = (*this)[fld];
             gather(f, order, scratch);
             f.swap(scratch);
         }
@@ -67,13 +78,12 @@ class ParticleSet {
         for (std::size_t f = 0; f < kNumFields; ++f)
             if (enabled(static_cast<Field>(f)) && fields_[f].size() != size())
                 throw Error("particle set: field sizes disagree");
-        for (const auto& info : kFieldTable) {
-            if (!(info.roles & kState)) continue;
-            const auto& f = (*this)[info.field];
+        for (Field fld : fields(kState)) {
+            const auto& f = (*this)[fld];
             for (std::size_t i = 0; i < size(); ++i)
                 if (!std::isfinite(f[i]))
                     throw Error("particle " + std::to_string(id[i]) + ": field " +
-                                std::string(info.name) + " is not finite");
+                                std::string(field_info(fld).name) + " is not finite");
         }
         for (Field f : {Field::m, Field::h}) {
             const auto& v = (*this)[f];

@@ -9,7 +9,8 @@
 namespace exasph {
 
 // Raw pointers to every field of a ParticleSet: what kernels receive instead of containers, so
-// that the same kernel runs on host memory and (later) device memory.
+// that the same kernel runs on host memory and (later) device memory. A disabled optional field
+// is a null pointer.
 template <class T>
 struct ParticleView {
     T* ptr[kNumFields];
@@ -20,7 +21,10 @@ struct ParticleView {
 template <class T>
 ParticleView<T> make_view(ParticleSet<T>& ps) {
     ParticleView<T> v{};
-    for (std::size_t i = 0; i < kNumFields; ++i) v.ptr[i] = ps.data(static_cast<Field>(i));
+    for (std::size_t i = 0; i < kNumFields; ++i) {
+        const auto f = static_cast<Field>(i);
+        v.ptr[i] = ps.enabled(f) ? ps.data(f) : nullptr; // disabled optional fields: null
+    }
     return v;
 }
 

@@ -28,7 +28,7 @@ inline constexpr const char* kCheckpointFormatUnsummed = "exasph-checkpoint-1"; 
 template <class T>
 std::uint64_t checkpoint_checksum(const ParticleSet<T>& ps, std::size_t n, const RestartState& rs,
                                   double dt0, MPI_Comm comm) {
-    const auto fields = fields_with_role(kState);
+    const auto fields = ps.fields(kState);
     std::uint64_t sum = 0;
     for (std::size_t i = 0; i < n; ++i) {
         HashChain h(ps.id[i]);
@@ -87,7 +87,7 @@ std::string write_checkpoint(const Simulation<T>& sim, const Config& cfg, const 
         h5::write_attribute(root, "dt_m1", rs.dt_m1);
         h5::write_attribute(root, "dt0", sim.dt0());
         h5::Group state(file, "/state", true);
-        const auto fields = fields_with_role(kState);
+        const auto fields = sim.particles().fields(kState); // the optional ones the run carries
         const std::vector<Field> first(fields.begin(), fields.begin() + fields.size() / 2);
         const std::vector<Field> second(fields.begin() + fields.size() / 2, fields.end());
         write_particle_fields(state, sim.particles(), sim.n_owned(), first, false, comm);
@@ -144,8 +144,12 @@ Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm com
     cp.rs.step = std::int64_t(num("step"));
     cp.rs.dt_m1 = num("dt_m1");
     h5::Group state(file, "/state", false);
-    const auto fields = fields_with_role(kState);
-    read_particle_fields(state, cp.ic.particles, fields, {}, true, comm);
+    // Optional state fields (Tait reference state, alpha, X) are in the file when the run
+    // carried them; reading one enables it.
+    std::vector<Field> required, optional;
+    for (Field f : fields_with_role(kState))
+        (field_info(f).roles & kOptional ? optional : required).push_back(f);
+    read_particle_fields(state, cp.ic.particles, required, optional, true, comm);
     h5::Group domain(file, "/domain", false);
     const std::uint64_t nkeys = h5::dataset_length(domain, "leaf_keys", true);
     cp.rs.leaf_keys = h5::read_u64(domain, "leaf_keys", 0, nkeys);

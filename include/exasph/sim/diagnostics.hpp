@@ -62,7 +62,7 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
                 mi * (double(z[i]) * vx[i] - double(x[i]) * vz[i]),
                 mi * (double(x[i]) * vy[i] - double(y[i]) * vx[i]),
                 double(nc[i]),
-                0.5 * mi * phi[i], // each pair counted from both sides (SPEC 8)
+                phi ? 0.5 * mi * phi[i] : 0.0, // each pair counted from both sides (SPEC 8)
                 mi,
                 mi * (std::abs(va) + std::abs(double(du[i]))),
                 mi * (std::sqrt(v2) + double(cs[i])),

@@ -196,9 +196,17 @@ inline int run(Config cfg, std::ostream& out) {
     double case_t_end = 0;
     auto sim_ptr = make_simulation(cfg, units, case_t_end);
     Simulation<double>& sim = *sim_ptr;
-    cfg.G = sim.gravitational_constant();          // outputs record the G the run uses
-    if (cfg.G == 0 && cfg.snapshot_fields.empty()) // no potential to write by default
-        std::erase(fields, Field::phi);
+    cfg.G = sim.gravitational_constant(); // outputs record the G the run uses
+    // Optional fields the run does not carry (phi without gravity, alpha without the AV switch)
+    // leave the default list; asked for by name they are an error.
+    for (Field f : std::vector<Field>(fields)) {
+        if (sim.particles().enabled(f)) continue;
+        if (!cfg.snapshot_fields.empty())
+            throw input_error("-f: field '" + std::string(field_info(f).name) +
+                                  "' is not carried by this run (" + optional_field_needs(f) + ")",
+                              true);
+        std::erase(fields, f);
+    }
     const double t_end = cfg.t_end > 0 ? cfg.t_end : (cfg.steps < 0 ? case_t_end : -1.0);
     if (t_end <= 0 && cfg.steps < 0)
         throw input_error("no end: give -s STEPS or --t-end T (the initial conditions set none)",

@@ -41,6 +41,7 @@ inline FaultSpec parse_fault(const std::string& text) {
     bool found = false;
     for (const auto& info : kFieldTable)
         if (info.name == parts[1] && (info.roles & kState)) f.field = info.field, found = true;
+    // (An optional field the run does not carry is refused when the fault is injected.)
     if (!found) throw input_error(usage + " with FIELD a state field (x, vx, u, h, m, ...)", true);
     try {
         std::size_t used = 0;
@@ -60,6 +61,10 @@ inline FaultSpec parse_fault(const std::string& text) {
 template <class T>
 bool inject_fault(ParticleSet<T>& ps, std::size_t n, const FaultSpec& f) {
     static_assert(sizeof(T) == 8 || sizeof(T) == 4);
+    if (!ps.enabled(f.field))
+        throw input_error("--inject-fault: this run carries no field " +
+                              std::string(field_info(f.field).name),
+                          true);
     for (std::size_t i = 0; i < n; ++i) {
         if (ps.id[i] != f.id) continue;
         T& v = ps[f.field][i];
@@ -84,17 +89,17 @@ bool inject_fault(ParticleSet<T>& ps, std::size_t n, const FaultSpec& f) {
 template <class T>
 struct StateCopy {
     std::vector<std::uint64_t> id;
-    std::vector<std::vector<T>> fields; // in the order of fields_with_role(kState)
+    std::vector<std::vector<T>> fields; // in the order of ps.fields(kState)
 
     void save(const ParticleSet<T>& ps, std::size_t n) {
-        const auto state = fields_with_role(kState);
+        const auto state = ps.fields(kState);
         id.assign(ps.id.begin(), ps.id.begin() + std::ptrdiff_t(n));
         fields.resize(state.size());
         for (std::size_t k = 0; k < state.size(); ++k)
             fields[k].assign(ps[state[k]].begin(), ps[state[k]].begin() + std::ptrdiff_t(n));
     }
     void restore(ParticleSet<T>& ps) const {
-        const auto state = fields_with_role(kState);
+        const auto state = ps.fields(kState); // the same set as at save(): the run's options
         ps.resize(id.size());
         std::copy(id.begin(), id.end(), ps.id.begin());
         for (std::size_t k = 0; k < state.size(); ++k)
@@ -117,9 +122,8 @@ std::uint64_t particle_state_hash(const ParticleSet<T>& ps, std::size_t i,
 template <class T>
 class StateGuard {
   public:
-    StateGuard() : fields_(fields_with_role(kState)) {}
-
     void seal(const ParticleSet<T>& ps, std::size_t n) {
+        fields_ = ps.fields(kState);
         hashes_.resize(n);
         const auto nn = std::int64_t(n);
 #pragma omp parallel for schedule(static)
@@ -161,7 +165,8 @@ class StateGuard {
     static std::string physics_violation(const ParticleSet<T>& ps, std::size_t i, const Box<T>& box,
                                          double dt, bool press_ok, bool u_positive) {
         for (const auto& info : kFieldTable)
-            if ((info.roles & kState) && !std::isfinite(ps[info.field][i]))
+            if ((info.roles & kState) && ps.enabled(info.field) &&
+                !std::isfinite(ps[info.field][i]))
                 return std::string(info.name) + " is not finite";
         if (!(ps[Field::m][i] > T(0))) return "m is not positive";
         if (!(ps[Field::h][i] > T(0))) return "h is not positive";

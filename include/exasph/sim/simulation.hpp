@@ -78,7 +78,12 @@ class Simulation {
                   cfg.curve),
           dt_m1_(ic.dt0), dt0_(ic.dt0), exact_(std::move(ic.exact)) {
         ps_.validate();
+        // Optional fields, allocated only for the options that use them.
         if (cfg.av_limiter) ps_.enable(kHaloGrad); // the velocity gradient (72 B/particle)
+        if (cfg.av_switch) ps_.enable(Field::alpha), ps_.enable(Field::divv);
+        if (cfg.volume_elements) ps_.enable(Field::xm), ps_.enable(Field::kx);
+        if (eos_.kind == EosKind::tait && !(ps_.enabled(Field::rho0) && ps_.enabled(Field::p0)))
+            throw input_error("the Tait EOS needs the reference fields rho0 and p0", true);
         if (cfg.on_sdc != "rollback" && cfg.on_sdc != "abort" && cfg.on_sdc != "off")
             throw input_error("--on-sdc must be abort, rollback or off, got " + cfg.on_sdc, true);
         if (!cfg.inject_fault.empty()) fault_ = parse_fault(cfg.inject_fault);
@@ -89,6 +94,7 @@ class Simulation {
                                   "summation) is not implemented; run with --G 0",
                                   true);
             gravity_.emplace(kernel_, G, cfg.theta, std::uint32_t(cfg.gravity_bucket));
+            ps_.enable(Field::phi);
         }
         if (restart) {
             time_ = restart->time;
@@ -96,8 +102,9 @@ class Simulation {
             dt_m1_ = restart->dt_m1;
             domain_.restore(ps_, restart->leaf_keys);
         } else {
-            std::fill(ps_[Field::alpha].begin(), ps_[Field::alpha].end(), T(cfg.alpha));
-            ps_[Field::xm] = ps_[Field::m]; // standard SPH weights for the first density
+            if (cfg.av_switch)
+                std::fill(ps_[Field::alpha].begin(), ps_[Field::alpha].end(), T(cfg.alpha));
+            if (cfg.volume_elements) ps_[Field::xm] = ps_[Field::m]; // weights of the 1st density
             domain_.init(ps_, box_);
         }
         diagnose(0.0);
@@ -324,6 +331,7 @@ class Simulation {
 
     Dissipation<T> dissipation() const {
         Dissipation<T> d;
+        d.alpha = T(cfg_.alpha);
         d.alpha_u = T(cfg_.conductivity);
         d.reconstruct = cfg_.av_limiter;
         // About the mean particle spacing in units of h: (4/3 pi (2h)^3 / ng0)^(1/3) / h.

@@ -42,6 +42,25 @@ inline std::vector<Field> snapshot_field_list(const std::vector<std::string>& na
     return out;
 }
 
+// What makes a run carry an optional field (for error messages).
+inline std::string optional_field_needs(Field f) {
+    switch (f) {
+    case Field::alpha:
+    case Field::divv:
+        return "per-particle alpha needs --av-switch; otherwise alpha is --alpha";
+    case Field::xm:
+    case Field::kx:
+        return "only with --volume-elements";
+    case Field::phi:
+        return "only with self-gravity";
+    case Field::rho0:
+    case Field::p0:
+        return "only with the Tait EOS";
+    default:
+        return "only with --av-limiter";
+    }
+}
+
 inline std::string numbered_path(const std::string& dir, const char* stem, std::int64_t step,
                                  const char* ext) {
     char name[64];

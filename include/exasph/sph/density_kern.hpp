@@ -27,7 +27,8 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb, const
     const T* x = p[Field::x];
     const T* y = p[Field::y];
     const T* z = p[Field::z];
-    const T* xm = p[Field::xm];
+    // Standard SPH carries no X field: X = m.
+    const T* xm = p[Field::xm] ? p[Field::xm] : p[Field::m];
     const T ha = p[Field::h][a];
     const T inv_h = T(1) / ha;
     const T w0 = k.value(T(0));

@@ -41,7 +41,7 @@ void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<
     for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
         auto r = density_kern(i, nb, p, box, k);
         p[Field::rho][i] = r.rho;
-        p[Field::kx][i] = r.kx;
+        if (p[Field::kx]) p[Field::kx][i] = r.kx;
         p[Field::omega][i] = r.omega;
         p[Field::nc][i] = T(r.nc);
     });
@@ -99,15 +99,19 @@ void compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, co
                              const KernelView<T>& k, const Dissipation<T>& diss = {}) {
     auto p = make_view(ps);
     const bool extras = diss.reconstruct || diss.alpha_u > T(0);
+    const bool alpha_field = p[Field::alpha] != nullptr;
     for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
-        auto r = extras ? momentum_energy_kern<T, true>(i, nb, p, box, k, diss)
-                        : momentum_energy_kern<T, false>(i, nb, p, box, k, diss);
+        auto r = alpha_field
+                     ? (extras ? momentum_energy_kern<T, true, true>(i, nb, p, box, k, diss)
+                               : momentum_energy_kern<T, false, true>(i, nb, p, box, k, diss))
+                     : (extras ? momentum_energy_kern<T, true, false>(i, nb, p, box, k, diss)
+                               : momentum_energy_kern<T, false, false>(i, nb, p, box, k, diss));
         p[Field::ax][i] = r.ax;
         p[Field::ay][i] = r.ay;
         p[Field::az][i] = r.az;
         p[Field::du][i] = r.du;
         p[Field::vsig_max][i] = r.vsig_max;
-        p[Field::divv][i] = r.divv;
+        if (p[Field::divv]) p[Field::divv][i] = r.divv;
     });
 }
 

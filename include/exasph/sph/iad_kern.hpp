@@ -65,8 +65,9 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const Particl
     const T* x = p[Field::x];
     const T* y = p[Field::y];
     const T* z = p[Field::z];
-    const T* xm = p[Field::xm];
-    const T* kx = p[Field::kx];
+    // Standard SPH carries no X and k fields: X = m and k = rho, so X_b / k_b = m_b / rho_b.
+    const T* xm = p[Field::xm] ? p[Field::xm] : p[Field::m];
+    const T* kx = p[Field::kx] ? p[Field::kx] : p[Field::rho];
     const T ha = p[Field::h][a];
     const T inv_h = T(1) / ha;
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];

@@ -23,6 +23,7 @@ struct Dissipation {
     T alpha_u = T(0);         // artificial conductivity coefficient (0: off)
     bool reconstruct = false; // viscosity from velocities reconstructed to the pair midpoint
     T eta_crit = T(0);        // pairs closer than eta_crit max(h_a, h_b) fade the reconstruction
+    T alpha = T(1);           // the AV coefficient where particles carry none (no AV switch)
 };
 
 // v_ab with both velocities reconstructed linearly to the pair midpoint (Rosswog 2015):
@@ -79,7 +80,9 @@ EXASPH_HD IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T d
 //             -1/2 sum_b m_b Pi_ab [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
 //   du_a/dt = P_a/(Om_a rho_a^2) sum_b m_b v_ab . A_ab(h_a)
 //             +1/4 sum_b m_b Pi_ab v_ab . [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
-template <class T, bool kExtras = true>
+// kExtras: conductivity or the limiter may be on. kAlphaField: alpha per particle (the AV
+// switch), else the constant diss.alpha.
+template <class T, bool kExtras = true, bool kAlphaField = true>
 EXASPH_HD MomentumEnergyResult<T>
 momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p, const Box<T>& box,
                      const KernelView<T>& k, const Dissipation<T>& diss = {}) {
@@ -91,7 +94,9 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
     const T* alpha = p[Field::alpha];
     const T ha = h[a], inv_ha = T(1) / ha, inv_ha3 = inv_ha * inv_ha * inv_ha;
     const T rho_a = rho[a], inv_rho_a = T(1) / rho_a;
-    const T *xm = p[Field::xm], *kx = p[Field::kx];
+    // Standard SPH carries no X and k fields: X = m, k = rho.
+    const T* xm = p[Field::xm] ? p[Field::xm] : m;
+    const T* kx = p[Field::kx] ? p[Field::kx] : rho;
     // Volume elements: the pressure terms carry X_a X_b / m_a and 1/k^2 in place of m_b and
     // 1/rho^2 (identical for X = m, where X_a / m_a = 1 and k = rho).
     const T xa_ma = xm[a] / m[a];
@@ -125,7 +130,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
         T vsig = c[a] + c[b] - T(3) * w_ab;
         vsig_max = vsig > vsig_max ? vsig : vsig_max;
         // alpha_ab = (alpha_a + alpha_b)/2 keeps Pi_ab symmetric (= alpha for a constant alpha)
-        T alpha_ab = T(0.5) * (alpha[a] + alpha[b]);
+        T alpha_ab = kAlphaField ? T(0.5) * (alpha[a] + alpha[b]) : diss.alpha;
         T pi_ab = vr < T(0) ? T(-0.5) * alpha_ab * vsig * w_ab : T(0);
         if (kExtras && diss.reconstruct && vr < T(0)) {
             // Only pairs that really approach are dissipated: the heating Pi_ab v_ab . A stays

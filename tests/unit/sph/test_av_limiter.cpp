@@ -30,7 +30,6 @@ TEST(AvLimiter, IadVelocityGradientIsExactForALinearFlow) {
         for (int r = 0; r < 3; ++r)
             *v[r] = kG[3 * r] * d[0] + kG[3 * r + 1] * d[1] + kG[3 * r + 2] * d[2];
     }
-    ps[Field::xm] = ps[Field::m];
     NeighbourLists<double> nl;
     testref::sort_and_find_neighbours(ps, box, NeighbourCriterion::symmetric, nl);
     KernelTable<double> k(sinc_kernel(6));

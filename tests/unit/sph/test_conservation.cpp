@@ -34,19 +34,22 @@ Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false,
         ps[Field::h][i] *= hf(rng);
         ps[Field::m][i] *= mf(rng);
     }
-    ps[Field::xm] = ps[Field::m]; // standard SPH volumes
-    if (volume_elements) {        // X = (m / rho)^0.7 with a varied "previous density"
+    if (volume_elements) { // X = (m / rho)^0.7 with a varied "previous density"
+        ps.enable(Field::xm);
+        ps.enable(Field::kx);
         std::uniform_real_distribution<double> rho_prev(0.7, 1.3);
         for (std::size_t i = 0; i < ps.size(); ++i)
             ps[Field::xm][i] = std::pow(ps[Field::m][i] / rho_prev(rng), 0.7);
     }
+    ps.enable(Field::alpha); // per-particle alpha (as with the AV switch), varied
+    std::uniform_real_distribution<double> alpha(0.2, 1.5);
+    for (auto& a : ps[Field::alpha]) a = alpha(rng);
     NeighbourLists<double> nl;
     testref::sort_and_find_neighbours(ps, box, crit, nl);
     KernelTable<double> k(sinc_kernel(6));
     compute_density(ps, nl, box, k.view());
     compute_eos(ps, EosParams{}, ps.size());
     compute_iad(ps, nl, box, k.view(), diss.reconstruct);
-    std::fill(ps[Field::alpha].begin(), ps[Field::alpha].end(), 1.0);
     compute_momentum_energy(ps, nl, box, k.view(), diss);
 
     double sum_ma[3] = {0, 0, 0}, sum_abs_ma = 0, sum_e = 0, sum_abs_va = 0;

@@ -21,7 +21,6 @@ struct Prepared {
 };
 
 void prepare(Prepared& s) {
-    s.ps[Field::xm] = s.ps[Field::m]; // standard SPH volumes
     auto keys = sort_along_curve(s.ps, s.box, CurveKind::hilbert);
     s.tree.build(keys.data(), std::uint32_t(s.ps.size()), 64);
     SearchView<double> sv{s.ps.data(Field::x), s.ps.data(Field::y), s.ps.data(Field::z),
