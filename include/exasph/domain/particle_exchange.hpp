@@ -26,8 +26,13 @@ void pack_particles(const ParticleSet<T>& ps, const std::uint32_t* idx, std::siz
                     const FieldSelection& sel, double* buf) {
     std::size_t slot = 0;
     for (Field f : sel.fields) {
-        const T* src = ps.data(f);
-        for (std::size_t k = 0; k < count; ++k) buf[slot * count + k] = double(src[idx[k]]);
+        if (is_narrow(f)) {
+            const float* src = ps.narrow(f);
+            for (std::size_t k = 0; k < count; ++k) buf[slot * count + k] = double(src[idx[k]]);
+        } else {
+            const T* src = ps.data(f);
+            for (std::size_t k = 0; k < count; ++k) buf[slot * count + k] = double(src[idx[k]]);
+        }
         ++slot;
     }
     if (sel.with_id)
@@ -41,8 +46,13 @@ void unpack_particles(ParticleSet<T>& ps, std::size_t offset, std::size_t count,
                       const FieldSelection& sel, const double* buf) {
     std::size_t slot = 0;
     for (Field f : sel.fields) {
-        T* dst = ps.data(f);
-        for (std::size_t k = 0; k < count; ++k) dst[offset + k] = T(buf[slot * count + k]);
+        if (is_narrow(f)) {
+            float* dst = ps.narrow(f);
+            for (std::size_t k = 0; k < count; ++k) dst[offset + k] = float(buf[slot * count + k]);
+        } else {
+            T* dst = ps.data(f);
+            for (std::size_t k = 0; k < count; ++k) dst[offset + k] = T(buf[slot * count + k]);
+        }
         ++slot;
     }
     if (sel.with_id)

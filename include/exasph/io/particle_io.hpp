@@ -35,8 +35,7 @@ std::uint64_t write_particle_fields(const h5::Group& g, const ParticleSet<T>& ps
     const std::uint64_t offset = global_offset(n_local, comm, n_global);
     std::vector<double> buf(n_local);
     for (Field f : fields) {
-        const T* src = ps.data(f);
-        for (std::size_t i = 0; i < n_local; ++i) buf[i] = double(src[i]);
+        for (std::size_t i = 0; i < n_local; ++i) buf[i] = ps.value(f, i);
         h5::write_doubles(g, std::string(field_info(f).name), buf.data(), n_local, offset,
                           n_global);
     }
@@ -68,8 +67,7 @@ read_particle_fields(const h5::Group& g, ParticleSet<T>& ps, const std::vector<F
     ps.resize(hi - lo);
     auto read_into = [&](Field f) {
         auto v = h5::read_doubles(g, std::string(field_info(f).name), lo, hi - lo);
-        auto& dst = ps[f];
-        for (std::size_t i = 0; i < v.size(); ++i) dst[i] = T(v[i]);
+        for (std::size_t i = 0; i < v.size(); ++i) ps.set_value(f, i, v[i]);
     };
     for (Field f : required) {
         check_length(std::string(field_info(f).name), false);

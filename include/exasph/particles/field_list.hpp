@@ -153,6 +153,29 @@ constexpr const FieldInfo& field_info(Field f) {
     return kFieldTable[static_cast<std::size_t>(f)];
 }
 
+// Derived fields stored in single precision (issue 7: bytes per particle). Only quantities that
+// enter the sums as coefficients of both members of a pair, so that the pairwise symmetry that
+// conserves momentum and energy is kept exactly; positions, velocities, h, m, u, rho and the
+// accelerations stay in the working precision. nc is an integer count (exact in float).
+constexpr bool is_narrow(Field f) {
+    switch (f) {
+    case Field::omega:
+    case Field::p:
+    case Field::c:
+    case Field::c11:
+    case Field::c12:
+    case Field::c13:
+    case Field::c22:
+    case Field::c23:
+    case Field::c33:
+    case Field::vsig_max:
+    case Field::nc:
+        return true;
+    default:
+        return false;
+    }
+}
+
 // The table is indexed by the enum: a row out of place is a compile error, not a silent bug.
 constexpr bool field_table_in_order() {
     for (std::size_t i = 0; i < kNumFields; ++i)

@@ -23,8 +23,13 @@ class ParticleSet {
     std::size_t size() const { return id.size(); }
 
     void resize(std::size_t n) {
-        for (std::size_t f = 0; f < kNumFields; ++f)
-            if (enabled(static_cast<Field>(f))) fields_[f].resize(n);
+        for (std::size_t f = 0; f < kNumFields; ++f) {
+            if (!enabled(static_cast<Field>(f))) continue;
+            if (is_narrow(static_cast<Field>(f)))
+                narrow_[f].resize(n);
+            else
+                fields_[f].resize(n);
+        }
         id.resize(n);
     }
 
@@ -51,10 +56,24 @@ class ParticleSet {
         return out;
     }
 
+    // Fields in the working precision T (not is_narrow).
     std::vector<T>& operator[](Field f) { return fields_[static_cast<std::size_t>(f)]; }
     const std::vector<T>& operator[](Field f) const { return fields_[static_cast<std::size_t>(f)]; }
     T* data(Field f) { return (*this)[f].data(); }
     const T* data(Field f) const { return (*this)[f].data(); }
+    // Fields stored in single precision (is_narrow).
+    float* narrow(Field f) { return narrow_[static_cast<std::size_t>(f)].data(); }
+    const float* narrow(Field f) const { return narrow_[static_cast<std::size_t>(f)].data(); }
+    // Either storage, as double (I/O, halo packing, tests).
+    double value(Field f, std::size_t i) const {
+        return is_narrow(f) ? double(narrow(f)[i]) : double(data(f)[i]);
+    }
+    void set_value(Field f, std::size_t i, double v) {
+        if (is_narrow(f))
+            narrow(f)[i] = float(v);
+        else
+            data(f)[i] = T(v);
+    }
 
     // Reorders all fields whose role matches `roles` (and the ids): new[i] = old[order[i]]; the
     // set then has order.size() particles (a shorter order drops particles). Derived fields are
@@ -62,6 +81,7 @@ class ParticleSet {
     void permute(const std::vector<std::uint32_t>& order, std::uint8_t roles = kState) {
         std::vector<T> scratch(order.size());
         for (Field fld : fields(roles)) {
+            if (is_narrow(fld)) throw Error("particle set: narrow fields are never permuted");
             auto& f = (*this)[fld];
             gather(f, order, scratch);
             f.swap(scratch);
@@ -76,7 +96,9 @@ class ParticleSet {
     // Throws Error naming the first offending particle.
     void validate() const {
         for (std::size_t f = 0; f < kNumFields; ++f)
-            if (enabled(static_cast<Field>(f)) && fields_[f].size() != size())
+            if (enabled(static_cast<Field>(f)) &&
+                (is_narrow(static_cast<Field>(f)) ? narrow_[f].size() : fields_[f].size()) !=
+                    size())
                 throw Error("particle set: field sizes disagree");
         for (Field fld : fields(kState)) {
             const auto& f = (*this)[fld];
@@ -106,6 +128,7 @@ class ParticleSet {
     }
 
     std::array<std::vector<T>, kNumFields> fields_;
+    std::array<std::vector<float>, kNumFields> narrow_; // used for the is_narrow fields only
     std::array<bool, kNumFields> optional_on_{};
 };
 

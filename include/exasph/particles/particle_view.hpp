@@ -14,8 +14,10 @@ namespace exasph {
 template <class T>
 struct ParticleView {
     T* ptr[kNumFields];
+    float* nptr[kNumFields]; // the single-precision fields (is_narrow)
 
     EXASPH_HD T* operator[](Field f) const { return ptr[static_cast<std::size_t>(f)]; }
+    EXASPH_HD float* narrow(Field f) const { return nptr[static_cast<std::size_t>(f)]; }
 };
 
 template <class T>
@@ -23,7 +25,9 @@ ParticleView<T> make_view(ParticleSet<T>& ps) {
     ParticleView<T> v{};
     for (std::size_t i = 0; i < kNumFields; ++i) {
         const auto f = static_cast<Field>(i);
-        v.ptr[i] = ps.enabled(f) ? ps.data(f) : nullptr; // disabled optional fields: null
+        const bool on = ps.enabled(f); // disabled optional fields: null
+        v.ptr[i] = on && !is_narrow(f) ? ps.data(f) : nullptr;
+        v.nptr[i] = on && is_narrow(f) ? ps.narrow(f) : nullptr;
     }
     return v;
 }

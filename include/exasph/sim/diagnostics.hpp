@@ -44,10 +44,11 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
                        const ExactDensity& exact, double t_rho, SumMax* out) {
     const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
     const T *vx = ps.data(Field::vx), *vy = ps.data(Field::vy), *vz = ps.data(Field::vz);
-    const T *m = ps.data(Field::m), *u = ps.data(Field::u), *nc = ps.data(Field::nc);
+    const T *m = ps.data(Field::m), *u = ps.data(Field::u);
+    const float *nc = ps.narrow(Field::nc), *cs = ps.narrow(Field::c);
     const T* phi = ps.data(Field::phi);
     const T *ax = ps.data(Field::ax), *ay = ps.data(Field::ay), *az = ps.data(Field::az),
-            *du = ps.data(Field::du), *cs = ps.data(Field::c);
+            *du = ps.data(Field::du);
     auto s = block_sum<14>(n_owned, [&](std::size_t i) -> std::array<double, 14> {
         const double mi = m[i];
         const double v2 = double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i];

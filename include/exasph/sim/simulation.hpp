@@ -273,7 +273,8 @@ class Simulation {
     // most 1.1 x the previous step; the first step is the case's dt0 (or less, if the limits
     // demand it). One collective (min).
     double choose_time_step() {
-        const T *h = ps_.data(Field::h), *vs = ps_.data(Field::vsig_max), *c = ps_.data(Field::c);
+        const T* h = ps_.data(Field::h);
+        const float *vs = ps_.narrow(Field::vsig_max), *c = ps_.narrow(Field::c);
         const T *ax = ps_.data(Field::ax), *ay = ps_.data(Field::ay), *az = ps_.data(Field::az);
         const auto n = static_cast<std::int64_t>(n_owned());
         const T courant = T(cfg_.courant);
@@ -281,7 +282,7 @@ class Simulation {
         double dt_min = std::numeric_limits<double>::max();
 #pragma omp parallel for schedule(static) reduction(min : dt_min)
         for (std::int64_t i = 0; i < n; ++i) {
-            dt_min = std::min(dt_min, double(courant_time_step(h[i], vs[i], c[i], courant)));
+            dt_min = std::min(dt_min, double(courant_time_step(h[i], T(vs[i]), T(c[i]), courant)));
             if (eps > 0)
                 dt_min =
                     std::min(dt_min, acceleration_time_step(double(h[i]), double(ax[i]),
@@ -321,12 +322,13 @@ class Simulation {
     // The AV switch: alpha follows the compression of the step (SPEC 6, sph/av_switch.hpp).
     void update_viscosity(double dt) {
         T* alpha = ps_.data(Field::alpha);
-        const T *divv = ps_.data(Field::divv), *h = ps_.data(Field::h), *c = ps_.data(Field::c);
+        const T *divv = ps_.data(Field::divv), *h = ps_.data(Field::h);
+        const float* c = ps_.narrow(Field::c);
         const auto n = static_cast<std::int64_t>(n_owned());
         const T amin = T(cfg_.alpha_min), amax = T(cfg_.alpha), decay = T(cfg_.av_decay);
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i)
-            alpha[i] = evolve_alpha(alpha[i], divv[i], h[i], c[i], T(dt), amin, amax, decay);
+            alpha[i] = evolve_alpha(alpha[i], divv[i], h[i], T(c[i]), T(dt), amin, amax, decay);
     }
 
     Dissipation<T> dissipation() const {
@@ -420,11 +422,11 @@ class Simulation {
 
     void update_smoothing_lengths() {
         T* h = ps_.data(Field::h);
-        const T* nc = ps_.data(Field::nc);
+        const float* nc = ps_.narrow(Field::nc);
         const auto n = static_cast<std::int64_t>(n_owned());
         const T ng0 = T(cfg_.ng0);
 #pragma omp parallel for schedule(static)
-        for (std::int64_t i = 0; i < n; ++i) h[i] = update_smoothing_length(h[i], nc[i], ng0);
+        for (std::int64_t i = 0; i < n; ++i) h[i] = update_smoothing_length(h[i], T(nc[i]), ng0);
     }
 
     // SPEC 10 sums, and the extent of the particles for next step's box: one collective.

@@ -42,8 +42,8 @@ void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<
         auto r = density_kern(i, nb, p, box, k);
         p[Field::rho][i] = r.rho;
         if (p[Field::kx]) p[Field::kx][i] = r.kx;
-        p[Field::omega][i] = r.omega;
-        p[Field::nc][i] = T(r.nc);
+        p.narrow(Field::omega)[i] = float(r.omega);
+        p.narrow(Field::nc)[i] = float(r.nc);
     });
 }
 
@@ -57,8 +57,8 @@ void compute_eos(ParticleSet<T>& ps, const EosParams& eos, std::size_t n_owned) 
     for (std::int64_t i = 0; i < n; ++i) {
         auto r = tait ? tait_eos(p[Field::rho][i], p[Field::rho0][i], p[Field::p0][i], c0)
                       : ideal_gas_eos(p[Field::rho][i], p[Field::u][i], gamma);
-        p[Field::p][i] = r.p;
-        p[Field::c][i] = r.c;
+        p.narrow(Field::p)[i] = float(r.p);
+        p.narrow(Field::c)[i] = float(r.c);
     }
 }
 
@@ -80,12 +80,12 @@ void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& 
 #pragma omp critical(exasph_iad_singular)
             first_singular = std::min(first_singular, i);
         }
-        p[Field::c11][i] = r.c11;
-        p[Field::c12][i] = r.c12;
-        p[Field::c13][i] = r.c13;
-        p[Field::c22][i] = r.c22;
-        p[Field::c23][i] = r.c23;
-        p[Field::c33][i] = r.c33;
+        p.narrow(Field::c11)[i] = float(r.c11);
+        p.narrow(Field::c12)[i] = float(r.c12);
+        p.narrow(Field::c13)[i] = float(r.c13);
+        p.narrow(Field::c22)[i] = float(r.c22);
+        p.narrow(Field::c23)[i] = float(r.c23);
+        p.narrow(Field::c33)[i] = float(r.c33);
     });
     if (first_singular < n)
         throw Error("IAD matrix tau is singular for particle id " +
@@ -110,7 +110,7 @@ void compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, co
         p[Field::ay][i] = r.ay;
         p[Field::az][i] = r.az;
         p[Field::du][i] = r.du;
-        p[Field::vsig_max][i] = r.vsig_max;
+        p.narrow(Field::vsig_max)[i] = float(r.vsig_max);
         if (p[Field::divv]) p[Field::divv][i] = r.divv;
     });
 }

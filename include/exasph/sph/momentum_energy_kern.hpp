@@ -64,8 +64,9 @@ struct IadProduct {
 };
 template <class T>
 EXASPH_HD IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T dx, T dy, T dz) {
-    T c11 = p[Field::c11][i], c12 = p[Field::c12][i], c13 = p[Field::c13][i];
-    T c22 = p[Field::c22][i], c23 = p[Field::c23][i], c33 = p[Field::c33][i];
+    // C is stored in single precision (is_narrow); the products are in T.
+    T c11 = p.narrow(Field::c11)[i], c12 = p.narrow(Field::c12)[i], c13 = p.narrow(Field::c13)[i];
+    T c22 = p.narrow(Field::c22)[i], c23 = p.narrow(Field::c23)[i], c33 = p.narrow(Field::c33)[i];
     return {c11 * dx + c12 * dy + c13 * dz, c12 * dx + c22 * dy + c23 * dz,
             c13 * dx + c23 * dy + c33 * dz};
 }
@@ -90,7 +91,9 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
     const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
     const T *h = p[Field::h], *m = p[Field::m], *rho = p[Field::rho];
-    const T *pr = p[Field::p], *c = p[Field::c], *omega = p[Field::omega];
+    // Single precision (is_narrow): P, c, Omega of both members of a pair come from the same
+    // stored values, so the pair terms stay antisymmetric.
+    const float *pr = p.narrow(Field::p), *c = p.narrow(Field::c), *omega = p.narrow(Field::omega);
     const T* alpha = p[Field::alpha];
     const T ha = h[a], inv_ha = T(1) / ha, inv_ha3 = inv_ha * inv_ha * inv_ha;
     const T rho_a = rho[a], inv_rho_a = T(1) / rho_a;
@@ -100,7 +103,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
     // Volume elements: the pressure terms carry X_a X_b / m_a and 1/k^2 in place of m_b and
     // 1/rho^2 (identical for X = m, where X_a / m_a = 1 and k = rho).
     const T xa_ma = xm[a] / m[a];
-    const T pa = pr[a] / (omega[a] * kx[a] * kx[a]) * xa_ma;
+    const T pa = T(pr[a]) / (T(omega[a]) * kx[a] * kx[a]) * xa_ma;
     T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0, divv = 0, du_cond = 0;
     const T* u = p[Field::u];
     T ga[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -127,7 +130,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
         T vr = -(vabx * dx + vaby * dy + vabz * dz);
         T w_ab = vr / (r > T(0) ? r : T(1)); // 0 for r = 0, where vr = 0
 
-        T vsig = c[a] + c[b] - T(3) * w_ab;
+        T vsig = T(c[a]) + T(c[b]) - T(3) * w_ab;
         vsig_max = vsig > vsig_max ? vsig : vsig_max;
         // alpha_ab = (alpha_a + alpha_b)/2 keeps Pi_ab symmetric (= alpha for a constant alpha)
         T alpha_ab = kAlphaField ? T(0.5) * (alpha[a] + alpha[b]) : diss.alpha;
@@ -141,9 +144,9 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
             T wt =
                 reconstructed_approach(vabx, vaby, vabz, dx, dy, dz, ga, gb, eta, diss.eta_crit) /
                 r;
-            pi_ab = wt < T(0) ? T(-0.5) * alpha_ab * (c[a] + c[b] - T(3) * wt) * wt : T(0);
+            pi_ab = wt < T(0) ? T(-0.5) * alpha_ab * (T(c[a]) + T(c[b]) - T(3) * wt) * wt : T(0);
         }
-        T pb = pr[b] / (omega[b] * kx[b] * kx[b]) * xa_ma;
+        T pb = T(pr[b]) / (T(omega[b]) * kx[b] * kx[b]) * xa_ma;
         T inv_rho_b = T(1) / rho[b];
         T mb = m[b];
         T gx = aax * inv_rho_a + abx * inv_rho_b; // A(h_a)/rho_a + A(h_b)/rho_b
@@ -163,7 +166,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
             // with signal speed sqrt(|P_a - P_b| / rho_ab) and |grad W| ~ A_bar . d / r, both
             // symmetric in a and b, so sum_a m_a du_a/dt stays zero.
             T rho_bar = T(0.5) * (rho_a + rho[b]);
-            T vu = std::sqrt(std::abs(pr[a] - pr[b]) / rho_bar);
+            T vu = std::sqrt(std::abs(T(pr[a]) - T(pr[b])) / rho_bar);
             T fbar = r > T(0)
                          ? T(0.5) * ((aax + abx) * dx + (aay + aby) * dy + (aaz + abz) * dz) / r
                          : T(0);
