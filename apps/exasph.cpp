@@ -15,6 +15,7 @@
 #include "exasph/sim/glass.hpp"
 #include "exasph/sim/run.hpp"
 #include "exasph/sph/sinc_kernel.hpp"
+#include "exasph/util/memory.hpp"
 
 namespace {
 
@@ -329,6 +330,7 @@ int run_exact(const ExactCommand& ec) {
 }
 
 int main(int argc, char** argv) {
+    exasph::map_large_blocks();
     int provided = 0;
     MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
     int rank = 0;

@@ -36,15 +36,14 @@ enum class Field : std::uint8_t {
     c33, // IAD matrix C = tau^-1 (SPEC 5)
     ax,
     ay,
-    az,       // acceleration
-    du,       // du/dt
-    vsig_max, // max_b v^sig_ab (SPEC 6, time step)
-    nc,       // neighbour count within 2h (SPEC 2)
-    alpha,    // artificial-viscosity coefficient (constant, or evolved by the AV switch)
-    divv,     // velocity divergence (IAD), drives the AV switch
-    xm,       // volume-element weight X (= m for standard SPH; (m/rho)^p with volume elements)
-    kx,       // volume-element normalisation k = sum_b X_b W_ab
-    phi,      // gravitational potential (SPEC 8; 0 without gravity)
+    az,    // acceleration
+    du,    // du/dt
+    nc,    // neighbour count within 2h (SPEC 2)
+    alpha, // artificial-viscosity coefficient (constant, or evolved by the AV switch)
+    divv,  // velocity divergence (IAD), drives the AV switch
+    xm,    // volume-element weight X (= m for standard SPH; (m/rho)^p with volume elements)
+    kx,    // volume-element normalisation k = sum_b X_b W_ab
+    phi,   // gravitational potential (SPEC 8; 0 without gravity)
     // Velocity gradient dv_i/dx_j (IAD), only with --av-limiter: the slope of the velocity
     // reconstruction in the artificial viscosity.
     gxx,
@@ -117,7 +116,6 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::ay,       "ay",       "length/time^2", kDerived | kSnapshot, "acceleration y"},
     {Field::az,       "az",       "length/time^2", kDerived | kSnapshot, "acceleration z"},
     {Field::du,       "du",       "energy/mass/time", kDerived | kSnapshot, "du/dt"},
-    {Field::vsig_max, "vsig_max", "length/time", kDerived, "max signal velocity over neighbours"},
     {Field::nc,       "nc",       "1",           kDerived | kSnapshot, "neighbour count within 2h"},
     {Field::alpha,    "alpha",    "1",           kState | kHaloSync | kSnapshot | kOptional, "artificial viscosity alpha"},
     {Field::divv,     "divv",     "1/time",      kDerived | kOptional, "velocity divergence"},
@@ -156,7 +154,9 @@ constexpr const FieldInfo& field_info(Field f) {
 // Derived fields stored in single precision (issue 7: bytes per particle). Only quantities that
 // enter the sums as coefficients of both members of a pair, so that the pairwise symmetry that
 // conserves momentum and energy is kept exactly; positions, velocities, h, m, u, rho and the
-// accelerations stay in the working precision. nc is an integer count (exact in float).
+// accelerations stay in the working precision. nc is an integer count (exact in float). (The
+// signal velocity max_b v^sig_ab is not stored: the momentum-energy pass reduces it to the
+// Courant time step where it computes it.)
 constexpr bool is_narrow(Field f) {
     switch (f) {
     case Field::omega:
@@ -168,7 +168,6 @@ constexpr bool is_narrow(Field f) {
     case Field::c22:
     case Field::c23:
     case Field::c33:
-    case Field::vsig_max:
     case Field::nc:
         return true;
     default:

@@ -144,7 +144,9 @@ class Simulation {
         compute_iad(ps_, nlists_, box_, kernel_.view(), cfg_.av_limiter);
         domain_.exchange_halos(ps_, cfg_.av_limiter ? kHaloIad | kHaloGrad : kHaloIad);
         timer_.stop(kIad);
-        compute_momentum_energy(ps_, nlists_, box_, kernel_.view(), dissipation());
+        courant_dt_ = compute_momentum_energy(ps_, nlists_, box_, kernel_.view(), dissipation(),
+                                              T(cfg_.courant));
+        nlists_.release(); // not needed again this step: the sync can use their memory
         timer_.stop(kMomentumEnergy);
         if (gravity_)
             gravity_->compute(ps_, n_owned(), domain_.assignment(), box_, domain_.curve(),
@@ -274,16 +276,14 @@ class Simulation {
     // demand it). One collective (min).
     double choose_time_step() {
         const T* h = ps_.data(Field::h);
-        const float *vs = ps_.narrow(Field::vsig_max), *c = ps_.narrow(Field::c);
         const T *ax = ps_.data(Field::ax), *ay = ps_.data(Field::ay), *az = ps_.data(Field::az);
         const auto n = static_cast<std::int64_t>(n_owned());
-        const T courant = T(cfg_.courant);
         const double eps = gravity_ ? cfg_.accel_eps : 0.0;
-        double dt_min = std::numeric_limits<double>::max();
+        // The Courant limit comes from the momentum-energy pass (courant_dt_).
+        double dt_min = std::min(courant_dt_, std::numeric_limits<double>::max());
+        if (eps > 0) {
 #pragma omp parallel for schedule(static) reduction(min : dt_min)
-        for (std::int64_t i = 0; i < n; ++i) {
-            dt_min = std::min(dt_min, double(courant_time_step(h[i], T(vs[i]), T(c[i]), courant)));
-            if (eps > 0)
+            for (std::int64_t i = 0; i < n; ++i)
                 dt_min =
                     std::min(dt_min, acceleration_time_step(double(h[i]), double(ax[i]),
                                                             double(ay[i]), double(az[i]), eps));
@@ -464,6 +464,7 @@ class Simulation {
     double t_end_ = -1.0;
     std::int64_t step_ = 0;
     std::uint32_t max_list_ = 0;
+    double courant_dt_ = 0; // Courant limit of this step's particles (momentum-energy pass)
     std::array<double, kNumControlFlags> local_flags_{}, flags_{};
     ExactDensity exact_;
     std::optional<GravitySolver<T>> gravity_;

@@ -1,7 +1,9 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <type_traits>
 
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/particles/particle_view.hpp"
@@ -9,6 +11,7 @@
 #include "exasph/sph/eos.hpp"
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/sph/timestep.hpp"
 #include "exasph/tree/neighbour_lists.hpp"
 #include "exasph/util/error.hpp"
 
@@ -17,21 +20,30 @@
 namespace exasph {
 
 // Calls body(i, neighbours of i) for every particle with a list, in parallel over the leaf
-// groups (each thread expands its groups' lists into its own buffer).
+// groups (each thread expands its groups' lists into its own buffer). Returns the minimum of
+// the body's results, if it returns a number (else +infinity).
 template <class T, class Body>
-void for_each_neighbourhood(const NeighbourLists<T>& nl, Body&& body) {
+double for_each_neighbourhood(const NeighbourLists<T>& nl, Body&& body) {
+    constexpr bool kReduces =
+        !std::is_void_v<std::invoke_result_t<Body&, std::uint32_t, NeighbourSpan>>;
     const auto groups = static_cast<std::int64_t>(nl.num_groups());
-#pragma omp parallel
+    double least = std::numeric_limits<double>::infinity();
+#pragma omp parallel reduction(min : least)
     {
         typename NeighbourLists<T>::Decoder dec(nl);
 #pragma omp for schedule(dynamic, 8)
         for (std::int64_t g = 0; g < groups; ++g) {
             dec.start(std::size_t(g));
             for (std::uint32_t i = nl.group_begin(std::size_t(g)); i < nl.group_end(std::size_t(g));
-                 ++i)
-                body(i, dec.next());
+                 ++i) {
+                if constexpr (kReduces)
+                    least = std::min(least, double(body(i, dec.next())));
+                else
+                    body(i, dec.next());
+            }
         }
     }
+    return least;
 }
 
 template <class T>
@@ -94,13 +106,19 @@ void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& 
                     " neighbours): too few or coplanar neighbours");
 }
 
+// Returns the Courant time step of SPEC 7 (min over the particles of courant h / max_b v^sig_ab,
+// or h / c where no pair approaches) for the factor `courant`: the signal velocities are used
+// where they are computed, not stored.
 template <class T>
-void compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
-                             const KernelView<T>& k, const Dissipation<T>& diss = {}) {
+double compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+                               const KernelView<T>& k, const Dissipation<T>& diss = {},
+                               T courant = T(0.2)) {
     auto p = make_view(ps);
+    const T* h = p[Field::h];
+    const float* c = p.narrow(Field::c);
     const bool extras = diss.reconstruct || diss.alpha_u > T(0);
     const bool alpha_field = p[Field::alpha] != nullptr;
-    for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
+    return for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
         auto r = alpha_field
                      ? (extras ? momentum_energy_kern<T, true, true>(i, nb, p, box, k, diss)
                                : momentum_energy_kern<T, false, true>(i, nb, p, box, k, diss))
@@ -110,8 +128,8 @@ void compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, co
         p[Field::ay][i] = r.ay;
         p[Field::az][i] = r.az;
         p[Field::du][i] = r.du;
-        p.narrow(Field::vsig_max)[i] = float(r.vsig_max);
         if (p[Field::divv]) p[Field::divv][i] = r.divv;
+        return courant_time_step(h[i], r.vsig_max, T(c[i]), courant);
     });
 }
 

@@ -4,8 +4,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
+
+#include <sys/mman.h>
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
@@ -116,8 +119,10 @@ class BitWriter {
     unsigned used_ = 0;
 };
 
-// Records in large blocks that live as long as the arena: one arena per thread, so that storing
-// needs no lock; reset() reuses the blocks for the next build. Records never move.
+// Records in large blocks: one arena per thread, so that storing needs no lock; reset() reuses
+// the blocks for the next build, release() returns them to the operating system (the blocks are
+// mapped pages, so the resident memory drops at once, unlike with a heap that keeps freed
+// chunks). Records never move.
 class Arena {
   public:
     const std::uint8_t* store(const std::vector<std::uint8_t>& rec) {
@@ -128,10 +133,10 @@ class Arena {
         }
         if (cur_ == blocks_.size()) {
             const std::size_t size = std::max(kBlockBytes, need);
-            blocks_.push_back({std::unique_ptr<std::uint8_t[]>(new std::uint8_t[size]), size});
+            blocks_.emplace_back(size);
             used_ = 0;
         }
-        std::uint8_t* dst = blocks_[cur_].data.get() + used_;
+        std::uint8_t* dst = blocks_[cur_].data + used_;
         std::memcpy(dst, rec.data(), rec.size());
         std::memset(dst + rec.size(), 0, kReadPad); // the padding that loads may read
         used_ += rec.size();
@@ -140,7 +145,14 @@ class Arena {
 
     // Starts a new build; blocks that the previous build did not reach are freed.
     void reset() {
-        if (!blocks_.empty()) blocks_.resize(std::min(blocks_.size(), cur_ + 1));
+        if (cur_ + 1 < blocks_.size())
+            blocks_.erase(blocks_.begin() + std::ptrdiff_t(cur_ + 1), blocks_.end());
+        cur_ = 0;
+        used_ = 0;
+    }
+
+    void release() {
+        blocks_.clear();
         cur_ = 0;
         used_ = 0;
     }
@@ -154,8 +166,24 @@ class Arena {
   private:
     static constexpr std::size_t kBlockBytes = std::size_t(1) << 20;
     struct Block {
-        std::unique_ptr<std::uint8_t[]> data;
+        std::uint8_t* data;
         std::size_t size;
+        explicit Block(std::size_t n) : size(n) {
+            void* p = mmap(nullptr, n, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+            if (p == MAP_FAILED) throw std::bad_alloc();
+            data = static_cast<std::uint8_t*>(p);
+        }
+        Block(Block&& o) noexcept : data(std::exchange(o.data, nullptr)), size(o.size) {}
+        Block& operator=(Block&& o) noexcept {
+            std::swap(data, o.data);
+            std::swap(size, o.size);
+            return *this;
+        }
+        Block(const Block&) = delete;
+        Block& operator=(const Block&) = delete;
+        ~Block() {
+            if (data) munmap(data, size);
+        }
     };
     std::vector<Block> blocks_;
     std::size_t cur_ = 0, used_ = 0;

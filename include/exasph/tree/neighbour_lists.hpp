@@ -26,8 +26,8 @@ namespace exasph {
 // the candidate leaves of the group, each particle of the group then tests those leaves' boxes
 // and scans the leaves within reach. The lists are kept in exactly that form, one byte record per
 // group:
-//   varint ncand, then per candidate leaf (ascending in particle index): varint gap to the
-//   previous leaf's end, varint size;
+//   varint ncand, then per candidate leaf (ascending in particle index): varint 2 size + g, and
+//   if g = 1 a varint gap to the previous leaf's end (g = 0: no gap);
 //   per particle of the group, in order: a bitmap of the candidate leaves it reached (ncand bits,
 //   whole bytes), then one bit per particle of the reached leaves (1: a neighbour; whole bytes).
 // About 60 B per particle at ng0 = 100 instead of 4 B per list slot (600 B at ngmax = 150).
@@ -89,8 +89,9 @@ class NeighbourLists {
             size_.resize(ncand_);
             std::uint32_t end = 0;
             for (std::uint32_t l = 0; l < ncand_; ++l) {
-                first_[l] = end + codec::get_varint(rec_);
-                size_[l] = codec::get_varint(rec_);
+                const std::uint32_t v = codec::get_varint(rec_);
+                size_[l] = v >> 1;
+                first_[l] = end + ((v & 1u) ? codec::get_varint(rec_) : 0u);
                 end = first_[l] + size_[l];
             }
         }
@@ -126,6 +127,14 @@ class NeighbourLists {
         const std::uint8_t* rec_ = nullptr;
         std::uint32_t ncand_ = 0;
     };
+
+    // Frees the lists' memory (their pages go back to the system) until the next build: the
+    // step's passes are done with them before the domain sync, the step's other memory peak.
+    void release() {
+        for (auto& a : arenas_) a.release();
+        records_.clear();
+        group_first_.clear();
+    }
 
     // The list of particle i (tests, error messages: decodes its group up to i).
     std::vector<std::uint32_t> list(std::uint32_t i) const {
@@ -207,8 +216,11 @@ class NeighbourLists {
         std::uint32_t end = 0;
         for (const auto* leaf : candidates) {
             if (leaf->begin < end) return false;
-            codec::put_varint(rec, leaf->begin - end);
-            codec::put_varint(rec, leaf->end - leaf->begin);
+            // Most candidates follow the previous one directly: the size carries a "gap follows"
+            // flag, so such a leaf takes one byte.
+            const std::uint32_t gap = leaf->begin - end;
+            codec::put_varint(rec, (leaf->end - leaf->begin) << 1 | (gap != 0 ? 1u : 0u));
+            if (gap != 0) codec::put_varint(rec, gap);
             end = leaf->end;
         }
         return true;
