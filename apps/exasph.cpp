@@ -183,8 +183,8 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
         ->capture_default_str();
     app.add_option("--on-sdc", cfg.on_sdc,
                    "Silent data corruption (state changed between steps, broken invariants, "
-                   "conservation watchdog): rollback to the last verified in-memory state, "
-                   "abort, or off (no checks)")
+                   "conservation watchdog): rollback to the last verified in-memory state (a "
+                   "copy of the state: ~112 B/particle), abort, or off (no checks)")
         ->check(CLI::IsMember({"rollback", "abort", "off"}))
         ->capture_default_str();
     app.add_option("--inject-fault", cfg.inject_fault,
