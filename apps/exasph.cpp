@@ -183,9 +183,15 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
         ->capture_default_str();
     app.add_option("--on-sdc", cfg.on_sdc,
                    "Silent data corruption (state changed between steps, broken invariants, "
-                   "conservation watchdog): rollback to the last verified in-memory state (a "
-                   "copy of the state: ~112 B/particle), abort, or off (no checks)")
+                   "conservation watchdog): rollback to the last verified state (see "
+                   "--sdc-rollback-store), abort, or off (no checks)")
         ->check(CLI::IsMember({"rollback", "abort", "off"}))
+        ->capture_default_str();
+    app.add_option("--sdc-rollback-store", cfg.sdc_rollback_store,
+                   "Where --on-sdc rollback keeps the verified state (every 10 steps): memory "
+                   "(a copy of the state, ~112 B/particle) or disk (one file per rank in the "
+                   "output directory, removed at the end)")
+        ->check(CLI::IsMember({"memory", "disk"}))
         ->capture_default_str();
     app.add_option("--inject-fault", cfg.inject_fault,
                    "Testing: flip bit BIT of state field FIELD of particle ID at the start of "

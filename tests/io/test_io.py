@@ -316,8 +316,9 @@ def test_auto_interval(r):
 
 
 def test_sdc_mpi(r):
-    """Issue 8: a bit flipped on one rank of two is detected there, both ranks roll back, and
-    the run ends bitwise equal to the clean run; --on-sdc abort ends it with exit code 1."""
+    """Issue 8: a bit flipped on one rank of two is detected there, both ranks roll back (from
+    memory, or from disk with --sdc-rollback-store disk), and the run ends bitwise equal to the
+    clean run; --on-sdc abort ends it with exit code 1."""
     args = ["--init", "sedov", "-n", 16, "--lattice", "-s", 14, "-w", 14, "--threads", 1]
     r.run(2, *args, "--out", r.work / "clean")
     p = r.run(2, *args, "--inject-fault", "12:u:1234:55", "--out", r.work / "flipped")
@@ -325,10 +326,18 @@ def test_sdc_mpi(r):
     assert "particle id 1234: state changed between steps" in p.stderr, p.stderr
     compare(r.work / "clean" / "snapshot_000014.h5", r.work / "flipped" / "snapshot_000014.h5",
             0.0)
+    # The rollback point on disk instead of in memory: the same replay, and no file left behind.
+    p = r.run(2, *args, "--inject-fault", "12:u:1234:55", "--sdc-rollback-store", "disk",
+              "--out", r.work / "disk")
+    assert "rolled back to step 10" in p.stdout, p.stdout
+    compare(r.work / "clean" / "snapshot_000014.h5", r.work / "disk" / "snapshot_000014.h5", 0.0)
+    left = [f.name for f in (r.work / "disk").iterdir() if "rollback" in f.name]
+    assert not left, left
     p = r.run(2, *args, "--inject-fault", "12:x:99:62", "--on-sdc", "abort",
               "--out", r.work / "abort", expect=1)
     assert "silent data corruption detected" in p.stderr, p.stderr
-    print("2 ranks: flip detected, rolled back, final state equal; abort mode exits 1")
+    print("2 ranks: flip detected, rolled back (memory and disk), final state equal; "
+          "abort mode exits 1")
 
 
 def main():

@@ -32,11 +32,12 @@ struct Config {
     int gravity_bucket =
         16; // gravity-tree leaf size: one interaction list per leaf (bench_gravity)
     std::string on_sdc = "rollback"; // --on-sdc abort|rollback|off (silent data corruption)
-    int sdc_rollback_every = 10;     // steps between in-memory rollback points
-    std::string inject_fault;        // --inject-fault STEP:FIELD:ID:BIT (tests)
-    int threads = 0;                 // 0: OpenMP default
-    int bucket_size = 64;            // local octree leaf size
-    int global_bucket = 128;         // global (top) tree leaf size: the unit of MPI load balance
+    int sdc_rollback_every = 10;     // steps between rollback points
+    std::string sdc_rollback_store = "memory"; // --sdc-rollback-store memory|disk
+    std::string inject_fault;                  // --inject-fault STEP:FIELD:ID:BIT (tests)
+    int threads = 0;                           // 0: OpenMP default
+    int bucket_size = 64;                      // local octree leaf size
+    int global_bucket = 128; // global (top) tree leaf size: the unit of MPI load balance
     CurveKind curve = CurveKind::hilbert;
     bool lattice = false; // sedov/noh: regular lattice instead of the (cached) glass
     std::vector<std::string> case_params; // --param KEY=VALUE: case parameters

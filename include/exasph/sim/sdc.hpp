@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "exasph/particles/particle_set.hpp"
@@ -107,6 +108,60 @@ struct StateCopy {
     }
 };
 
+// The rollback point on disk (--sdc-rollback-store disk): the same data as StateCopy in one raw
+// file per rank, so that no copy of the state stays in memory (~112 B/particle). Written under a
+// temporary name and renamed; a checksum of the particles' state hashes is verified when it is
+// read back. The file is removed with the object.
+template <class T>
+class StateFile {
+  public:
+    StateFile() = default;
+    StateFile(const StateFile&) = delete;
+    StateFile& operator=(const StateFile&) = delete;
+    ~StateFile() {
+        if (written_) std::remove(path_.c_str());
+    }
+
+    void set_path(std::string path) { path_ = std::move(path); }
+
+    void save(const ParticleSet<T>& ps, std::size_t n) {
+        const auto state = ps.fields(kState);
+        const std::string tmp = path_ + ".tmp";
+        std::FILE* f = std::fopen(tmp.c_str(), "wb");
+        if (!f) throw Error("cannot write the rollback point " + tmp, 1, true);
+        const std::uint64_t head[3] = {n, state.size(), state_sum(ps, n, state)};
+        bool ok = std::fwrite(head, sizeof head, 1, f) == 1;
+        ok = ok && std::fwrite(ps.id.data(), sizeof(std::uint64_t), n, f) == n;
+        for (Field fld : state) ok = ok && std::fwrite(ps.data(fld), sizeof(T), n, f) == n;
+        ok = std::fclose(f) == 0 && ok;
+        if (!ok || std::rename(tmp.c_str(), path_.c_str()) != 0)
+            throw Error("cannot write the rollback point " + path_ + " (disk full?)", 1, true);
+        written_ = true;
+    }
+
+    void restore(ParticleSet<T>& ps) const {
+        const auto state = ps.fields(kState);
+        std::FILE* f = std::fopen(path_.c_str(), "rb");
+        if (!f) throw Error("cannot read the rollback point " + path_, 1, true);
+        std::uint64_t head[3] = {0, 0, 0};
+        bool ok = std::fread(head, sizeof head, 1, f) == 1 && head[1] == state.size();
+        const std::size_t n = ok ? std::size_t(head[0]) : 0;
+        ps.resize(n);
+        ok = ok && std::fread(ps.id.data(), sizeof(std::uint64_t), n, f) == n;
+        for (Field fld : state) ok = ok && std::fread(ps.data(fld), sizeof(T), n, f) == n;
+        std::fclose(f);
+        if (!ok || state_sum(ps, n, state) != head[2])
+            throw Error("the rollback point " + path_ + " is unreadable or altered", 1, true);
+    }
+
+  private:
+    static std::uint64_t state_sum(const ParticleSet<T>& ps, std::size_t n,
+                                   const std::vector<Field>& state);
+
+    std::string path_;
+    bool written_ = false;
+};
+
 // Hash of one particle's id and state fields (bit patterns, in field-list order).
 template <class T>
 std::uint64_t particle_state_hash(const ParticleSet<T>& ps, std::size_t i,
@@ -114,6 +169,16 @@ std::uint64_t particle_state_hash(const ParticleSet<T>& ps, std::size_t i,
     HashChain h(ps.id[i]);
     for (Field f : fields) h.add_float(ps[f][i]);
     return h.value();
+}
+
+template <class T>
+std::uint64_t StateFile<T>::state_sum(const ParticleSet<T>& ps, std::size_t n,
+                                      const std::vector<Field>& state) {
+    std::uint64_t sum = 0;
+    const auto nn = std::int64_t(n);
+#pragma omp parallel for schedule(static) reduction(+ : sum)
+    for (std::int64_t i = 0; i < nn; ++i) sum += particle_state_hash(ps, std::size_t(i), state);
+    return sum;
 }
 
 // Guards the owned particles' state between steps: seal() records a hash per particle at the end

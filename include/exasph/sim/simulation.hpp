@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -86,6 +87,15 @@ class Simulation {
             throw input_error("the Tait EOS needs the reference fields rho0 and p0", true);
         if (cfg.on_sdc != "rollback" && cfg.on_sdc != "abort" && cfg.on_sdc != "off")
             throw input_error("--on-sdc must be abort, rollback or off, got " + cfg.on_sdc, true);
+        if (cfg.sdc_rollback_store != "memory" && cfg.sdc_rollback_store != "disk")
+            throw input_error(
+                "--sdc-rollback-store must be memory or disk, got " + cfg.sdc_rollback_store, true);
+        rollback_.on_disk = cfg.sdc_rollback_store == "disk";
+        if (rollback_.on_disk)
+            rollback_.file.set_path(
+                (std::filesystem::path(cfg.out_dir) /
+                 (".sdc-rollback-rank" + std::to_string(domain_.rank()) + ".bin"))
+                    .string());
         if (!cfg.inject_fault.empty()) fault_ = parse_fault(cfg.inject_fault);
         const double G = cfg.G >= 0 ? cfg.G : ic.G;
         if (G > 0) {
@@ -364,7 +374,10 @@ class Simulation {
     }
 
     void save_rollback_point() {
-        rollback_.state.save(ps_, n_owned());
+        if (rollback_.on_disk)
+            rollback_.file.save(ps_, n_owned());
+        else
+            rollback_.state.save(ps_, n_owned());
         rollback_.rs = restart_state();
         rollback_.box = box_;
         rollback_.diag = diag_;
@@ -386,7 +399,10 @@ class Simulation {
                         1, true);
         sdc_summary_ = "corruption detected by " + where + " (" + detail +
                        "): rolled back to step " + std::to_string(rollback_.rs.step);
-        rollback_.state.restore(ps_);
+        if (rollback_.on_disk)
+            rollback_.file.restore(ps_);
+        else
+            rollback_.state.restore(ps_);
         box_ = rollback_.box;
         time_ = rollback_.rs.time;
         step_ = rollback_.rs.step;
@@ -470,7 +486,9 @@ class Simulation {
     std::optional<GravitySolver<T>> gravity_;
     // Silent-data-corruption defences (sim/sdc.hpp).
     struct RollbackPoint {
-        StateCopy<T> state;
+        StateCopy<T> state; // in memory, or
+        StateFile<T> file;  // on disk (--sdc-rollback-store disk)
+        bool on_disk = false;
         RestartState rs;
         Box<T> box;
         Diagnostics diag;
