@@ -23,13 +23,8 @@ class ParticleSet {
     std::size_t size() const { return id.size(); }
 
     void resize(std::size_t n) {
-        for (std::size_t f = 0; f < kNumFields; ++f) {
-            if (!enabled(static_cast<Field>(f))) continue;
-            if (is_narrow(static_cast<Field>(f)))
-                narrow_[f].resize(n);
-            else
-                fields_[f].resize(n);
-        }
+        for (std::size_t f = 0; f < kNumFields; ++f)
+            if (enabled(static_cast<Field>(f))) resize_storage(static_cast<Field>(f), n);
         id.resize(n);
     }
 
@@ -40,7 +35,8 @@ class ParticleSet {
     void enable(Field f) {
         if (enabled(f)) return;
         optional_on_[static_cast<std::size_t>(f)] = true;
-        (*this)[f].assign(size(), T(0));
+        resize_storage(f, 0); // zero-filled, whatever the vector held
+        resize_storage(f, size());
     }
     // Allocates the optional fields with any of `roles` (e.g. kHaloGrad: the velocity gradient).
     void enable(std::uint8_t roles) {
@@ -96,9 +92,7 @@ class ParticleSet {
     // Throws Error naming the first offending particle.
     void validate() const {
         for (std::size_t f = 0; f < kNumFields; ++f)
-            if (enabled(static_cast<Field>(f)) &&
-                (is_narrow(static_cast<Field>(f)) ? narrow_[f].size() : fields_[f].size()) !=
-                    size())
+            if (enabled(static_cast<Field>(f)) && storage_size(static_cast<Field>(f)) != size())
                 throw Error("particle set: field sizes disagree");
         for (Field fld : fields(kState)) {
             const auto& f = (*this)[fld];
@@ -119,6 +113,16 @@ class ParticleSet {
     std::vector<std::uint64_t> id;
 
   private:
+    // A field's array, in whichever precision it is stored.
+    void resize_storage(Field f, std::size_t n) {
+        const auto k = static_cast<std::size_t>(f);
+        is_narrow(f) ? narrow_[k].resize(n) : fields_[k].resize(n);
+    }
+    std::size_t storage_size(Field f) const {
+        const auto k = static_cast<std::size_t>(f);
+        return is_narrow(f) ? narrow_[k].size() : fields_[k].size();
+    }
+
     template <class V>
     static void gather(const std::vector<V>& src, const std::vector<std::uint32_t>& order,
                        std::vector<V>& dst) {

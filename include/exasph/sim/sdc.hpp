@@ -162,6 +162,25 @@ class StateFile {
     bool written_ = false;
 };
 
+// The rollback point's particles: in memory (StateCopy), or on disk once given a path.
+template <class T>
+class StateStore {
+  public:
+    void keep_on_disk(std::string path) {
+        file_.set_path(std::move(path));
+        on_disk_ = true;
+    }
+    void save(const ParticleSet<T>& ps, std::size_t n) {
+        on_disk_ ? file_.save(ps, n) : memory_.save(ps, n);
+    }
+    void restore(ParticleSet<T>& ps) const { on_disk_ ? file_.restore(ps) : memory_.restore(ps); }
+
+  private:
+    StateCopy<T> memory_;
+    StateFile<T> file_;
+    bool on_disk_ = false;
+};
+
 // Hash of one particle's id and state fields (bit patterns, in field-list order).
 template <class T>
 std::uint64_t particle_state_hash(const ParticleSet<T>& ps, std::size_t i,

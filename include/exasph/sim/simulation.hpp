@@ -90,9 +90,8 @@ class Simulation {
         if (cfg.sdc_rollback_store != "memory" && cfg.sdc_rollback_store != "disk")
             throw input_error(
                 "--sdc-rollback-store must be memory or disk, got " + cfg.sdc_rollback_store, true);
-        rollback_.on_disk = cfg.sdc_rollback_store == "disk";
-        if (rollback_.on_disk)
-            rollback_.file.set_path(
+        if (cfg.sdc_rollback_store == "disk")
+            rollback_.state.keep_on_disk(
                 (std::filesystem::path(cfg.out_dir) /
                  (".sdc-rollback-rank" + std::to_string(domain_.rank()) + ".bin"))
                     .string());
@@ -374,10 +373,7 @@ class Simulation {
     }
 
     void save_rollback_point() {
-        if (rollback_.on_disk)
-            rollback_.file.save(ps_, n_owned());
-        else
-            rollback_.state.save(ps_, n_owned());
+        rollback_.state.save(ps_, n_owned());
         rollback_.rs = restart_state();
         rollback_.box = box_;
         rollback_.diag = diag_;
@@ -399,10 +395,7 @@ class Simulation {
                         1, true);
         sdc_summary_ = "corruption detected by " + where + " (" + detail +
                        "): rolled back to step " + std::to_string(rollback_.rs.step);
-        if (rollback_.on_disk)
-            rollback_.file.restore(ps_);
-        else
-            rollback_.state.restore(ps_);
+        rollback_.state.restore(ps_);
         box_ = rollback_.box;
         time_ = rollback_.rs.time;
         step_ = rollback_.rs.step;
@@ -486,9 +479,7 @@ class Simulation {
     std::optional<GravitySolver<T>> gravity_;
     // Silent-data-corruption defences (sim/sdc.hpp).
     struct RollbackPoint {
-        StateCopy<T> state; // in memory, or
-        StateFile<T> file;  // on disk (--sdc-rollback-store disk)
-        bool on_disk = false;
+        StateStore<T> state; // in memory, or on disk (--sdc-rollback-store disk)
         RestartState rs;
         Box<T> box;
         Diagnostics diag;

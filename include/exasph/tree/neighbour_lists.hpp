@@ -30,7 +30,8 @@ namespace exasph {
 //   if g = 1 a varint gap to the previous leaf's end (g = 0: no gap);
 //   per particle of the group, in order: a bitmap of the candidate leaves it reached (ncand bits,
 //   whole bytes), then one bit per particle of the reached leaves (1: a neighbour; whole bytes).
-// About 60 B per particle at ng0 = 100 instead of 4 B per list slot (600 B at ngmax = 150).
+// About 70 B per particle at ng0 = 100 (Sedov glass) instead of 4 B per list slot (600 B at
+// ngmax = 150).
 // Decoder expands a particle's list into indices in the order of the search (candidate order,
 // ascending within a leaf), so the SPH sums see the same neighbours in the same order.
 template <class T>
