@@ -188,11 +188,14 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
         ->check(CLI::IsMember({"rollback", "abort", "off"}))
         ->capture_default_str();
     app.add_option("--sdc-rollback-store", cfg.sdc_rollback_store,
-                   "Where --on-sdc rollback keeps the verified state (every 10 steps): memory "
-                   "(a copy of the state, ~112 B/particle) or disk (one file per rank in the "
-                   "output directory, removed at the end)")
+                   "Where --on-sdc rollback keeps the verified state (every 10 steps): disk "
+                   "(one file per rank, ~112 B/particle, in --sdc-rollback-dir, removed at the "
+                   "end) or memory (a copy of the state: ~112 B/particle more RAM, no I/O)")
         ->check(CLI::IsMember({"memory", "disk"}))
         ->capture_default_str();
+    app.add_option("--sdc-rollback-dir", cfg.sdc_rollback_dir,
+                   "Directory of the disk rollback point, e.g. node-local scratch on a cluster "
+                   "(default: the --out directory)");
     app.add_option("--inject-fault", cfg.inject_fault,
                    "Testing: flip bit BIT of state field FIELD of particle ID at the start of "
                    "step STEP, once (STEP:FIELD:ID:BIT)");

@@ -25,7 +25,7 @@ inline std::vector<ParticleState> owned_state(const Simulation<double>& sim) {
     std::vector<ParticleState> out(sim.n_owned());
     const bool gravity = ps.enabled(Field::phi);
     for (std::size_t i = 0; i < out.size(); ++i)
-        out[i] = {ps.id[i],         ps[Field::rho][i],
+        out[i] = {ps.id[i],         ps.value(Field::rho, i),
                   ps[Field::vx][i], ps[Field::vy][i],
                   ps[Field::vz][i], ps[Field::u][i],
                   ps[Field::ax][i], ps[Field::ay][i],

@@ -317,8 +317,8 @@ def test_auto_interval(r):
 
 def test_sdc_mpi(r):
     """Issue 8: a bit flipped on one rank of two is detected there, both ranks roll back (from
-    memory, or from disk with --sdc-rollback-store disk), and the run ends bitwise equal to the
-    clean run; --on-sdc abort ends it with exit code 1."""
+    disk, the default, or from memory with --sdc-rollback-store memory), and the run ends bitwise
+    equal to the clean run; --on-sdc abort ends it with exit code 1."""
     args = ["--init", "sedov", "-n", 16, "--lattice", "-s", 14, "-w", 14, "--threads", 1]
     r.run(2, *args, "--out", r.work / "clean")
     p = r.run(2, *args, "--inject-fault", "12:u:1234:55", "--out", r.work / "flipped")
@@ -326,17 +326,27 @@ def test_sdc_mpi(r):
     assert "particle id 1234: state changed between steps" in p.stderr, p.stderr
     compare(r.work / "clean" / "snapshot_000014.h5", r.work / "flipped" / "snapshot_000014.h5",
             0.0)
-    # The rollback point on disk instead of in memory: the same replay, and no file left behind.
-    p = r.run(2, *args, "--inject-fault", "12:u:1234:55", "--sdc-rollback-store", "disk",
-              "--out", r.work / "disk")
+    left = [f.name for f in (r.work / "flipped").iterdir() if "rollback" in f.name]
+    assert not left, left  # the rollback files are removed at the end
+    # The rollback point in memory instead: the same replay.
+    p = r.run(2, *args, "--inject-fault", "12:u:1234:55", "--sdc-rollback-store", "memory",
+              "--out", r.work / "memory")
     assert "rolled back to step 10" in p.stdout, p.stdout
-    compare(r.work / "clean" / "snapshot_000014.h5", r.work / "disk" / "snapshot_000014.h5", 0.0)
-    left = [f.name for f in (r.work / "disk").iterdir() if "rollback" in f.name]
-    assert not left, left
+    compare(r.work / "clean" / "snapshot_000014.h5", r.work / "memory" / "snapshot_000014.h5",
+            0.0)
+    # On disk in another directory (node-local scratch on a cluster), created if missing.
+    scratch = r.work / "scratch" / "sub"
+    p = r.run(2, *args, "--inject-fault", "12:u:1234:55", "--sdc-rollback-dir", scratch,
+              "--out", r.work / "scratchrun")
+    assert "rolled back to step 10" in p.stdout, p.stdout
+    compare(r.work / "clean" / "snapshot_000014.h5",
+            r.work / "scratchrun" / "snapshot_000014.h5", 0.0)
+    assert scratch.is_dir() and not list(scratch.iterdir()), list(scratch.iterdir())
     p = r.run(2, *args, "--inject-fault", "12:x:99:62", "--on-sdc", "abort",
               "--out", r.work / "abort", expect=1)
     assert "silent data corruption detected" in p.stderr, p.stderr
-    print("2 ranks: flip detected, rolled back (memory and disk), final state equal; "
+    print("2 ranks: flip detected, rolled back (disk, memory, disk in another directory), "
+          "final state equal; "
           "abort mode exits 1")
 
 

@@ -175,16 +175,20 @@ class Domain {
 
     std::vector<std::uint64_t> compute_keys(const ParticleSet<T>& ps, const Box<T>& box) const {
         std::vector<std::uint64_t> keys(n_owned_);
-        const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n_owned_; ++i) keys[i] = sfc_key(x[i], y[i], z[i], box, curve_);
+        compute_sfc_keys(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z), n_owned_, box,
+                         curve_, keys.data());
         return keys;
     }
 
     std::vector<std::uint32_t> leaves_of(const std::vector<std::uint64_t>& keys) const {
         std::vector<std::uint32_t> leaf(keys.size());
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < keys.size(); ++i) leaf[i] = tree_.leaf_of(keys[i]);
+#pragma omp parallel
+        {
+            std::uint32_t hint = 0;
+#pragma omp for schedule(static)
+            for (std::size_t i = 0; i < keys.size(); ++i)
+                hint = leaf[i] = tree_.leaf_of(keys[i], hint);
+        }
         return leaf;
     }
 
@@ -225,10 +229,8 @@ class Domain {
                              coll_.comm(), kTagHalo);
         // Sources own ascending key ranges and send in SFC order: the halos arrive sorted.
         std::vector<std::uint64_t> hkeys(plan_.n_halo);
-        for (std::size_t k = 0; k < plan_.n_halo; ++k) {
-            std::size_t i = n_owned_ + k;
-            hkeys[k] = sfc_key(ps[Field::x][i], ps[Field::y][i], ps[Field::z][i], box, curve_);
-        }
+        compute_sfc_keys(ps.data(Field::x) + n_owned_, ps.data(Field::y) + n_owned_,
+                         ps.data(Field::z) + n_owned_, plan_.n_halo, box, curve_, hkeys.data());
         if (!std::is_sorted(hkeys.begin(), hkeys.end()))
             throw Error("domain: halos did not arrive in SFC order");
         halo_tree_.build(hkeys.data(), std::uint32_t(plan_.n_halo), leaf_size_,

@@ -39,6 +39,13 @@ class GlobalTree {
         auto it = std::upper_bound(keys_.begin(), keys_.end(), key);
         return static_cast<std::uint32_t>(it - keys_.begin() - 1);
     }
+    // The same, trying leaf `hint` first: particles still in last step's SFC order mostly fall
+    // into the leaf of the previous particle.
+    std::uint32_t leaf_of(std::uint64_t key, std::uint32_t hint) const {
+        if (std::size_t(hint) + 1 < keys_.size() && keys_[hint] <= key && key < keys_[hint + 1])
+            return hint;
+        return leaf_of(key);
+    }
 
     // Octree level of a leaf (0 = root cell).
     int level(std::size_t leaf) const {

@@ -70,6 +70,35 @@ std::vector<std::uint64_t> sort_by_keys(ParticleSet<T>& ps, std::vector<std::uin
     return keys;
 }
 
+// keys[i] = the SFC key of particle i < n. The curve is chosen once, outside the loop, so that
+// the key arithmetic (all selects and bit operations) vectorises across particles.
+template <class T>
+void compute_sfc_keys(const T* x, const T* y, const T* z, std::size_t n, const Box<T>& box,
+                      CurveKind kind, std::uint64_t* keys) {
+    const auto m = static_cast<std::int64_t>(n);
+    if (kind == CurveKind::hilbert) {
+        const auto blocks = static_cast<std::int64_t>((n + kHilbertBlock - 1) / kHilbertBlock);
+#pragma omp parallel for schedule(static)
+        for (std::int64_t b = 0; b < blocks; ++b) {
+            const std::size_t first = std::size_t(b) * kHilbertBlock;
+            const std::size_t count = std::min(kHilbertBlock, n - first);
+            std::uint32_t a[3][kHilbertBlock];
+#pragma omp simd
+            for (std::size_t k = 0; k < count; ++k) {
+                a[0][k] = key_coordinate(x[first + k], box, 0);
+                a[1][k] = key_coordinate(y[first + k], box, 1);
+                a[2][k] = key_coordinate(z[first + k], box, 2);
+            }
+            hilbert_encode_block(a, count, keys + first);
+        }
+    } else {
+#pragma omp parallel for simd schedule(static)
+        for (std::int64_t i = 0; i < m; ++i)
+            keys[i] = morton_encode(key_coordinate(x[i], box, 0), key_coordinate(y[i], box, 1),
+                                    key_coordinate(z[i], box, 2));
+    }
+}
+
 // Sorts the first n particles (all when n is omitted) along the space-filling curve, drops the
 // rest, and returns the sorted keys. Equal keys are ordered by persistent id, so the order is
 // unique: independent of threads and of the order in which migrated particles arrived.
@@ -78,9 +107,8 @@ std::vector<std::uint64_t> sort_along_curve(ParticleSet<T>& ps, const Box<T>& bo
                                             std::size_t n = std::size_t(-1)) {
     n = std::min(n, ps.size());
     std::vector<std::uint64_t> keys(n);
-    const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) keys[i] = sfc_key(x[i], y[i], z[i], box, kind);
+    compute_sfc_keys(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z), n, box, kind,
+                     keys.data());
     return sort_by_keys(ps, std::move(keys));
 }
 

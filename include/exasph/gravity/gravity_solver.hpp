@@ -8,6 +8,7 @@
 
 #include "exasph/domain/collectives.hpp"
 #include "exasph/domain/global_tree.hpp"
+#include "exasph/domain/sfc_order.hpp"
 #include "exasph/gravity/gravity_group_kern.hpp"
 #include "exasph/gravity/gravity_tree.hpp"
 #include "exasph/particles/particle_set.hpp"
@@ -76,8 +77,8 @@ class GravitySolver {
                                          const Assignment& asg, const Box<T>& box, CurveKind curve,
                                          std::uint32_t f0, std::uint32_t f1) {
         keys_.resize(n);
-        const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
-        for (std::size_t i = 0; i < n; ++i) keys_[i] = sfc_key(x[i], y[i], z[i], box, curve);
+        compute_sfc_keys(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z), n, box, curve,
+                         keys_.data());
         std::vector<Range> own(f1 - f0);
         for (std::uint32_t g = f0; g < f1; ++g) {
             auto b = std::lower_bound(keys_.begin(), keys_.end(), asg.leaf_keys[g]);

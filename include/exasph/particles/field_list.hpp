@@ -153,12 +153,15 @@ constexpr const FieldInfo& field_info(Field f) {
 
 // Derived fields stored in single precision (issue 7: bytes per particle). Only quantities that
 // enter the sums as coefficients of both members of a pair, so that the pairwise symmetry that
-// conserves momentum and energy is kept exactly; positions, velocities, h, m, u, rho and the
-// accelerations stay in the working precision. nc is an integer count (exact in float). (The
+// conserves momentum and energy is kept exactly (the density is recomputed every step from the
+// positions and enters the pair terms only as rho_a and rho_b); positions, velocities, h, m, u
+// and the accelerations stay in the working precision. nc is an integer count (exact in float).
+// The sums themselves run in the working precision. (The
 // signal velocity max_b v^sig_ab is not stored: the momentum-energy pass reduces it to the
 // Courant time step where it computes it.)
 constexpr bool is_narrow(Field f) {
     switch (f) {
+    case Field::rho:
     case Field::omega:
     case Field::p:
     case Field::c:

@@ -10,11 +10,12 @@ namespace exasph {
 enum class CurveKind { hilbert, morton };
 
 // Integer cell coordinate of x along one axis of the box, clamped to [0, 2^21 - 1].
+// Selects instead of branching, so that loops over particles vectorise (NaN gives 0).
 template <class T>
-EXASPH_HD std::uint32_t key_coordinate(T x, const Box<T>& box, int axis) {
+EXASPH_HD EXASPH_INLINE std::uint32_t key_coordinate(T x, const Box<T>& box, int axis) {
     T s = (x - box.lo[axis]) / (box.hi[axis] - box.lo[axis]) * T(kKeyAxisMax + 1);
-    if (!(s > T(0))) return 0;
-    if (s >= T(kKeyAxisMax)) return kKeyAxisMax;
+    s = s > T(0) ? s : T(0);
+    s = s < T(kKeyAxisMax) ? s : T(kKeyAxisMax);
     return static_cast<std::uint32_t>(s);
 }
 

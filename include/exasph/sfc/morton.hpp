@@ -11,7 +11,7 @@ inline constexpr int kKeyBitsPerAxis = 21;
 inline constexpr std::uint32_t kKeyAxisMax = (1u << kKeyBitsPerAxis) - 1;
 
 // Spreads the low 21 bits of v so that bit i moves to bit 3i.
-EXASPH_HD constexpr std::uint64_t spread_bits3(std::uint64_t v) {
+EXASPH_HD EXASPH_INLINE constexpr std::uint64_t spread_bits3(std::uint64_t v) {
     v &= 0x1fffffULL;
     v = (v | v << 32) & 0x1f00000000ffffULL;
     v = (v | v << 16) & 0x1f0000ff0000ffULL;
@@ -32,8 +32,8 @@ EXASPH_HD constexpr std::uint32_t compact_bits3(std::uint64_t v) {
     return static_cast<std::uint32_t>(v);
 }
 
-EXASPH_HD constexpr std::uint64_t morton_encode(std::uint32_t ix, std::uint32_t iy,
-                                                std::uint32_t iz) {
+EXASPH_HD EXASPH_INLINE constexpr std::uint64_t morton_encode(std::uint32_t ix, std::uint32_t iy,
+                                                              std::uint32_t iz) {
     return spread_bits3(ix) << 2 | spread_bits3(iy) << 1 | spread_bits3(iz);
 }
 

@@ -79,8 +79,8 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     out[9] = {double(n_owned), -nc_lo};
     double ratio = n_owned > 0 ? double(n_halo) / double(n_owned) : 0.0;
     out[10] = {ratio, ratio};
-    const T *rho = ps.data(Field::rho), *xp = ps.data(Field::x_m1), *yp = ps.data(Field::y_m1),
-            *zp = ps.data(Field::z_m1);
+    const float* rho = ps.narrow(Field::rho);
+    const T *xp = ps.data(Field::x_m1), *yp = ps.data(Field::y_m1), *zp = ps.data(Field::z_m1);
     double l1 = 0, rho_max = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n_owned; ++i) {
         rho_max = std::max(rho_max, double(rho[i]));

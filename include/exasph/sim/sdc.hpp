@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <utility>
@@ -127,6 +128,16 @@ class StateFile {
     void save(const ParticleSet<T>& ps, std::size_t n) {
         const auto state = ps.fields(kState);
         const std::string tmp = path_ + ".tmp";
+        if (!written_) {
+            // The directory may not exist yet (the first point is saved before any output).
+            std::error_code ec;
+            const auto dir = std::filesystem::path(path_).parent_path();
+            if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+            if (ec)
+                throw Error("cannot create the directory of the rollback point " + path_ + ": " +
+                                ec.message(),
+                            1, true);
+        }
         std::FILE* f = std::fopen(tmp.c_str(), "wb");
         if (!f) throw Error("cannot write the rollback point " + tmp, 1, true);
         const std::uint64_t head[3] = {n, state.size(), state_sum(ps, n, state)};
@@ -190,6 +201,22 @@ std::uint64_t particle_state_hash(const ParticleSet<T>& ps, std::size_t i,
     return h.value();
 }
 
+// particle_state_hash of the particles [first, first + count), count <= kHashBlock: the chain
+// advances one field at a time over the whole block, so that the mixing vectorises.
+inline constexpr std::size_t kHashBlock = 256;
+template <class T>
+void state_hash_block(const ParticleSet<T>& ps, const std::vector<Field>& fields, std::size_t first,
+                      std::size_t count, std::uint64_t* h) {
+    const std::uint64_t* id = ps.id.data() + first;
+#pragma omp simd
+    for (std::size_t k = 0; k < count; ++k) h[k] = mix64(id[k]);
+    for (Field f : fields) {
+        const T* v = ps.data(f) + first;
+#pragma omp simd
+        for (std::size_t k = 0; k < count; ++k) h[k] = mix64(h[k] ^ float_bits(v[k]));
+    }
+}
+
 template <class T>
 std::uint64_t StateFile<T>::state_sum(const ParticleSet<T>& ps, std::size_t n,
                                       const std::vector<Field>& state) {
@@ -209,9 +236,15 @@ class StateGuard {
     void seal(const ParticleSet<T>& ps, std::size_t n) {
         fields_ = ps.fields(kState);
         hashes_.resize(n);
-        const auto nn = std::int64_t(n);
+        const auto blocks = std::int64_t((n + kHashBlock - 1) / kHashBlock);
 #pragma omp parallel for schedule(static)
-        for (std::int64_t i = 0; i < nn; ++i) hashes_[i] = sealed_hash(ps, i);
+        for (std::int64_t b = 0; b < blocks; ++b) {
+            std::uint32_t h[kHashBlock];
+            const std::size_t first = std::size_t(b) * kHashBlock;
+            const std::size_t count = std::min(kHashBlock, n - first);
+            sealed_hashes(ps, first, count, h);
+            std::copy_n(h, count, hashes_.begin() + std::ptrdiff_t(first));
+        }
         sealed_ = true;
     }
     void unseal() {
@@ -226,9 +259,19 @@ class StateGuard {
         const auto nn = std::int64_t(n);
         std::int64_t bad_hash = nn, bad_physics = nn;
         if (sealed_ && hashes_.size() == n) {
+            const auto blocks = std::int64_t((n + kHashBlock - 1) / kHashBlock);
 #pragma omp parallel for schedule(static) reduction(min : bad_hash)
-            for (std::int64_t i = 0; i < nn; ++i)
-                if (sealed_hash(ps, i) != hashes_[i] && i < bad_hash) bad_hash = i;
+            for (std::int64_t b = 0; b < blocks; ++b) {
+                std::uint32_t h[kHashBlock];
+                const std::size_t first = std::size_t(b) * kHashBlock;
+                const std::size_t count = std::min(kHashBlock, n - first);
+                sealed_hashes(ps, first, count, h);
+                for (std::size_t k = 0; k < count; ++k)
+                    if (h[k] != hashes_[first + k]) {
+                        bad_hash = std::min(bad_hash, std::int64_t(first + k));
+                        break;
+                    }
+            }
         }
         std::string why;
 #pragma omp parallel for schedule(static) reduction(min : bad_physics)
@@ -286,10 +329,13 @@ class StateGuard {
 
     std::vector<Field> fields_;
     // 32 bits per particle (4 B/particle of memory): a changed state goes unnoticed with
-    // probability 2^-32 per corrupted particle.
-    std::uint32_t sealed_hash(const ParticleSet<T>& ps, std::size_t i) const {
-        const std::uint64_t h = particle_state_hash(ps, i, fields_);
-        return std::uint32_t(h ^ (h >> 32));
+    // probability 2^-32 per corrupted particle. particle_state_hash folded to 32 bits, for
+    // particles [first, first + count), count <= kHashBlock.
+    void sealed_hashes(const ParticleSet<T>& ps, std::size_t first, std::size_t count,
+                       std::uint32_t* out) const {
+        std::uint64_t h[kHashBlock];
+        state_hash_block(ps, fields_, first, count, h);
+        for (std::size_t k = 0; k < count; ++k) out[k] = std::uint32_t(h[k] ^ (h[k] >> 32));
     }
 
     std::vector<std::uint32_t> hashes_;

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <optional>
 #include <string_view>
+#include <unistd.h>
 #include <vector>
 
 #include "exasph/cases/initial_conditions.hpp"
@@ -92,8 +93,11 @@ class Simulation {
                 "--sdc-rollback-store must be memory or disk, got " + cfg.sdc_rollback_store, true);
         if (cfg.sdc_rollback_store == "disk")
             rollback_.state.keep_on_disk(
-                (std::filesystem::path(cfg.out_dir) /
-                 (".sdc-rollback-rank" + std::to_string(domain_.rank()) + ".bin"))
+                (std::filesystem::path(cfg.sdc_rollback_dir.empty() ? cfg.out_dir
+                                                                    : cfg.sdc_rollback_dir) /
+                 // the process id keeps runs that share a scratch directory apart
+                 (".sdc-rollback-rank" + std::to_string(domain_.rank()) + "-" +
+                  std::to_string(::getpid()) + ".bin"))
                     .string());
         if (!cfg.inject_fault.empty()) fault_ = parse_fault(cfg.inject_fault);
         const double G = cfg.G >= 0 ? cfg.G : ic.G;
@@ -230,8 +234,9 @@ class Simulation {
     double density_scatter() const {
         double s[3] = {0, 0, double(n_owned())};
         for (std::size_t i = 0; i < n_owned(); ++i) {
-            s[0] += ps_[Field::rho][i];
-            s[1] += double(ps_[Field::rho][i]) * ps_[Field::rho][i];
+            const double rho = ps_.narrow(Field::rho)[i];
+            s[0] += rho;
+            s[1] += rho * rho;
         }
         MPI_Allreduce(MPI_IN_PLACE, s, 3, MPI_DOUBLE, MPI_SUM, domain_.comm());
         double mean = s[0] / s[2];
@@ -277,7 +282,7 @@ class Simulation {
 
     // SPEC 4: the Tait reference density is the density measured at step 0, per particle.
     void capture_reference_density() {
-        std::copy_n(ps_[Field::rho].begin(), n_owned(), ps_[Field::rho0].begin());
+        std::copy_n(ps_.narrow(Field::rho), n_owned(), ps_[Field::rho0].begin());
     }
 
     // SPEC 7: Courant limit over all particles (with gravity also the acceleration limit), at
@@ -353,7 +358,8 @@ class Simulation {
     // Volume elements: X_a = (m_a / rho_a)^p from this step's density, used by the next step.
     void update_volume_weights() {
         T* xm = ps_.data(Field::xm);
-        const T *m = ps_.data(Field::m), *rho = ps_.data(Field::rho);
+        const T* m = ps_.data(Field::m);
+        const float* rho = ps_.narrow(Field::rho);
         const auto n = static_cast<std::int64_t>(n_owned());
         const double pw = cfg_.ve_exponent;
 #pragma omp parallel for schedule(static)

@@ -52,7 +52,7 @@ void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<
     auto p = make_view(ps);
     for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
         auto r = density_kern(i, nb, p, box, k);
-        p[Field::rho][i] = r.rho;
+        p.narrow(Field::rho)[i] = float(r.rho);
         if (p[Field::kx]) p[Field::kx][i] = r.kx;
         p.narrow(Field::omega)[i] = float(r.omega);
         p.narrow(Field::nc)[i] = float(r.nc);
@@ -67,8 +67,8 @@ void compute_eos(ParticleSet<T>& ps, const EosParams& eos, std::size_t n_owned) 
     const bool tait = eos.kind == EosKind::tait;
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {
-        auto r = tait ? tait_eos(p[Field::rho][i], p[Field::rho0][i], p[Field::p0][i], c0)
-                      : ideal_gas_eos(p[Field::rho][i], p[Field::u][i], gamma);
+        auto r = tait ? tait_eos(T(p.narrow(Field::rho)[i]), p[Field::rho0][i], p[Field::p0][i], c0)
+                      : ideal_gas_eos(T(p.narrow(Field::rho)[i]), p[Field::u][i], gamma);
         p.narrow(Field::p)[i] = float(r.p);
         p.narrow(Field::c)[i] = float(r.c);
     }
@@ -118,19 +118,28 @@ double compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, 
     const float* c = p.narrow(Field::c);
     const bool extras = diss.reconstruct || diss.alpha_u > T(0);
     const bool alpha_field = p[Field::alpha] != nullptr;
-    return for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
-        auto r = alpha_field
-                     ? (extras ? momentum_energy_kern<T, true, true>(i, nb, p, box, k, diss)
-                               : momentum_energy_kern<T, false, true>(i, nb, p, box, k, diss))
-                     : (extras ? momentum_energy_kern<T, true, false>(i, nb, p, box, k, diss)
-                               : momentum_energy_kern<T, false, false>(i, nb, p, box, k, diss));
-        p[Field::ax][i] = r.ax;
-        p[Field::ay][i] = r.ay;
-        p[Field::az][i] = r.az;
-        p[Field::du][i] = r.du;
-        if (p[Field::divv]) p[Field::divv][i] = r.divv;
-        return courant_time_step(h[i], r.vsig_max, T(c[i]), courant);
-    });
+    const bool volume_elements = p[Field::kx] != nullptr;
+    // One instantiation of the pair loop per combination of options, chosen once per pass.
+    auto pass = [&](auto extras_c, auto alpha_c, auto ve_c) {
+        return for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
+            auto r = momentum_energy_kern<T, extras_c(), alpha_c(), ve_c()>(i, nb, p, box, k, diss);
+            p[Field::ax][i] = r.ax;
+            p[Field::ay][i] = r.ay;
+            p[Field::az][i] = r.az;
+            p[Field::du][i] = r.du;
+            if (p[Field::divv]) p[Field::divv][i] = r.divv;
+            return courant_time_step(h[i], r.vsig_max, T(c[i]), courant);
+        });
+    };
+    auto with_ve = [&](auto extras_c, auto alpha_c) {
+        return volume_elements ? pass(extras_c, alpha_c, std::true_type{})
+                               : pass(extras_c, alpha_c, std::false_type{});
+    };
+    auto with_alpha = [&](auto extras_c) {
+        return alpha_field ? with_ve(extras_c, std::true_type{})
+                           : with_ve(extras_c, std::false_type{});
+    };
+    return extras ? with_alpha(std::true_type{}) : with_alpha(std::false_type{});
 }
 
 } // namespace exasph

@@ -58,16 +58,16 @@ EXASPH_HD VelocityGradient<T> velocity_gradient(const T (&d)[9], const IadResult
 // SPEC 5, with the volume V_b = X_b / k_b (= m_b / rho_b for standard SPH):
 // tau_a = sum_b V_b (x_b - x_a) (x) (x_b - x_a) W_ab(h_a), C_a = tau_a^{-1}.
 // With a non-null `grad`, the same pass also yields the velocity gradient (velocity_gradient).
-template <class T>
-EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
-                                const Box<T>& box, const KernelView<T>& k,
-                                VelocityGradient<T>* grad = nullptr) {
+// `kx`: k_b, the volume-element field, or rho_b (single precision, is_narrow) for standard SPH.
+template <class T, class K>
+EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
+                                     const Box<T>& box, const KernelView<T>& k,
+                                     VelocityGradient<T>* grad, const K* kx) {
     const T* x = p[Field::x];
     const T* y = p[Field::y];
     const T* z = p[Field::z];
-    // Standard SPH carries no X and k fields: X = m and k = rho, so X_b / k_b = m_b / rho_b.
+    // Standard SPH carries no X field: X = m, so X_b / k_b = m_b / rho_b.
     const T* xm = p[Field::xm] ? p[Field::xm] : p[Field::m];
-    const T* kx = p[Field::kx] ? p[Field::kx] : p[Field::rho];
     const T ha = p[Field::h][a];
     const T inv_h = T(1) / ha;
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
@@ -81,7 +81,7 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const Particl
         dx = image(x[b] - x[a], 0);
         dy = image(y[b] - y[a], 1);
         dz = image(z[b] - z[a], 2);
-        return xm[b] / kx[b] * k.value(std::sqrt(dx * dx + dy * dy + dz * dz) * inv_h);
+        return xm[b] / T(kx[b]) * k.value(std::sqrt(dx * dx + dy * dy + dz * dz) * inv_h);
     };
 #pragma omp simd reduction(+ : t11, t12, t13, t22, t23, t33)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
@@ -115,6 +115,14 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const Particl
         *grad = velocity_gradient(d, c);
     }
     return c;
+}
+
+template <class T>
+EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
+                                const Box<T>& box, const KernelView<T>& k,
+                                VelocityGradient<T>* grad = nullptr) {
+    return p[Field::kx] ? iad_kern_with(a, nb, p, box, k, grad, p[Field::kx])
+                        : iad_kern_with(a, nb, p, box, k, grad, p.narrow(Field::rho));
 }
 
 } // namespace exasph

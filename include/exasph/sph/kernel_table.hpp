@@ -21,7 +21,7 @@ struct KernelView {
     // into a branch, which it then cannot vectorise).
     // The index is clamped as unsigned, so that any v (huge or NaN from a corrupted particle,
     // whose conversion gives INT_MIN) reads inside the table.
-    EXASPH_HD T lookup(const T* table, T v) const {
+    EXASPH_HD EXASPH_INLINE T lookup(const T* table, T v) const {
         T s = v * inv_dv;
         int i = static_cast<int>(s);
         int j = unsigned(i) < unsigned(size - 2) ? i : size - 2;
@@ -29,8 +29,8 @@ struct KernelView {
         T w = table[j] + f * (table[j + 1] - table[j]);
         return w * T(s < T(size - 1));
     }
-    EXASPH_HD T value(T v) const { return lookup(w, v); }
-    EXASPH_HD T derivative(T v) const { return lookup(dw, v); }
+    EXASPH_HD EXASPH_INLINE T value(T v) const { return lookup(w, v); }
+    EXASPH_HD EXASPH_INLINE T derivative(T v) const { return lookup(dw, v); }
 };
 
 // A kernel shape f(v) on [0, 2] and its derivative, before normalisation. A new kernel is a new

@@ -63,7 +63,8 @@ struct IadProduct {
     T x, y, z;
 };
 template <class T>
-EXASPH_HD IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T dx, T dy, T dz) {
+EXASPH_HD EXASPH_INLINE IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T dx,
+                                                T dy, T dz) {
     // C is stored in single precision (is_narrow); the products are in T.
     T c11 = p.narrow(Field::c11)[i], c12 = p.narrow(Field::c12)[i], c13 = p.narrow(Field::c13)[i];
     T c22 = p.narrow(Field::c22)[i], c23 = p.narrow(Field::c23)[i], c33 = p.narrow(Field::c33)[i];
@@ -82,28 +83,31 @@ EXASPH_HD IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T d
 //   du_a/dt = P_a/(Om_a rho_a^2) sum_b m_b v_ab . A_ab(h_a)
 //             +1/4 sum_b m_b Pi_ab v_ab . [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
 // kExtras: conductivity or the limiter may be on. kAlphaField: alpha per particle (the AV
-// switch), else the constant diss.alpha.
-template <class T, bool kExtras = true, bool kAlphaField = true>
+// switch, which also wants the velocity divergence), else the constant diss.alpha (divv is
+// then not computed). kVolumeElements: X and k are fields; without them
+// X = m and k = rho are read once per neighbour, not twice through aliased pointers.
+template <class T, bool kExtras = true, bool kAlphaField = true, bool kVolumeElements = true>
 EXASPH_HD MomentumEnergyResult<T>
 momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p, const Box<T>& box,
                      const KernelView<T>& k, const Dissipation<T>& diss = {}) {
     const T alpha_u = diss.alpha_u;
     const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
-    const T *h = p[Field::h], *m = p[Field::m], *rho = p[Field::rho];
-    // Single precision (is_narrow): P, c, Omega of both members of a pair come from the same
-    // stored values, so the pair terms stay antisymmetric.
-    const float *pr = p.narrow(Field::p), *c = p.narrow(Field::c), *omega = p.narrow(Field::omega);
+    const T *h = p[Field::h], *m = p[Field::m];
+    // Single precision (is_narrow): rho, P, c, Omega of both members of a pair come from the
+    // same stored values, so the pair terms stay antisymmetric.
+    const float *rho = p.narrow(Field::rho), *pr = p.narrow(Field::p), *c = p.narrow(Field::c),
+                *omega = p.narrow(Field::omega);
     const T* alpha = p[Field::alpha];
     const T ha = h[a], inv_ha = T(1) / ha, inv_ha3 = inv_ha * inv_ha * inv_ha;
     const T rho_a = rho[a], inv_rho_a = T(1) / rho_a;
     // Standard SPH carries no X and k fields: X = m, k = rho.
-    const T* xm = p[Field::xm] ? p[Field::xm] : m;
-    const T* kx = p[Field::kx] ? p[Field::kx] : rho;
+    const T *xm = p[Field::xm], *kx = p[Field::kx];
     // Volume elements: the pressure terms carry X_a X_b / m_a and 1/k^2 in place of m_b and
     // 1/rho^2 (identical for X = m, where X_a / m_a = 1 and k = rho).
-    const T xa_ma = xm[a] / m[a];
-    const T pa = T(pr[a]) / (T(omega[a]) * kx[a] * kx[a]) * xa_ma;
+    const T xa_ma = kVolumeElements ? xm[a] / m[a] : T(1);
+    const T ka = kVolumeElements ? kx[a] : rho_a;
+    const T pa = T(pr[a]) / (T(omega[a]) * ka * ka) * xa_ma;
     T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0, divv = 0, du_cond = 0;
     const T* u = p[Field::u];
     T ga[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -146,26 +150,27 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
                 r;
             pi_ab = wt < T(0) ? T(-0.5) * alpha_ab * (T(c[a]) + T(c[b]) - T(3) * wt) * wt : T(0);
         }
-        T pb = T(pr[b]) / (T(omega[b]) * kx[b] * kx[b]) * xa_ma;
-        T inv_rho_b = T(1) / rho[b];
+        T kb = kVolumeElements ? kx[b] : T(rho[b]);
+        T pb = T(pr[b]) / (T(omega[b]) * kb * kb) * xa_ma;
+        T inv_rho_b = T(1) / T(rho[b]);
         T mb = m[b];
         T gx = aax * inv_rho_a + abx * inv_rho_b; // A(h_a)/rho_a + A(h_b)/rho_b
         T gy = aay * inv_rho_a + aby * inv_rho_b;
         T gz = aaz * inv_rho_a + abz * inv_rho_b;
         T half_pi = T(0.5) * pi_ab;
-        T xb = xm[b];
+        T xb = kVolumeElements ? xm[b] : mb;
         ax -= xb * (pa * aax + pb * abx) + mb * half_pi * gx;
         ay -= xb * (pa * aay + pb * aby) + mb * half_pi * gy;
         az -= xb * (pa * aaz + pb * abz) + mb * half_pi * gz;
         T v_dot_a = vabx * aax + vaby * aay + vabz * aaz;
         du_p += xb * v_dot_a;
-        divv -= xb / kx[b] * v_dot_a;
+        if constexpr (kAlphaField) divv -= xb / kb * v_dot_a; // the AV switch's input only
         du_av += mb * pi_ab * (vabx * gx + vaby * gy + vabz * gz);
         if (kExtras && alpha_u > T(0)) {
             // Artificial conductivity (Price 2008): heat flows from hot to cold along the pair,
             // with signal speed sqrt(|P_a - P_b| / rho_ab) and |grad W| ~ A_bar . d / r, both
             // symmetric in a and b, so sum_a m_a du_a/dt stays zero.
-            T rho_bar = T(0.5) * (rho_a + rho[b]);
+            T rho_bar = T(0.5) * (rho_a + T(rho[b]));
             T vu = std::sqrt(std::abs(T(pr[a]) - T(pr[b])) / rho_bar);
             T fbar = r > T(0)
                          ? T(0.5) * ((aax + abx) * dx + (aay + aby) * dy + (aaz + abz) * dz) / r

@@ -175,14 +175,14 @@ TEST_P(DomainTest, HalosContainEveryRemoteNeighbour) {
 
 TEST_P(DomainTest, HaloExchangeDeliversOwnerValues) {
     for (std::size_t i = 0; i < domain.n_owned(); ++i) {
-        ps[Field::rho][i] = 1.0 + double(ps.id[i]);
+        ps.narrow(Field::rho)[i] = 1.0f + float(ps.id[i]);
         ps.narrow(Field::c11)[i] = -float(ps.id[i]);
     }
-    for (std::size_t i = domain.n_owned(); i < ps.size(); ++i) ps[Field::rho][i] = -1;
+    for (std::size_t i = domain.n_owned(); i < ps.size(); ++i) ps.narrow(Field::rho)[i] = -1;
     domain.exchange_halos(ps, kHaloDensity);
     domain.exchange_halos(ps, kHaloIad);
     for (std::size_t i = domain.n_owned(); i < ps.size(); ++i) {
-        EXPECT_EQ(ps[Field::rho][i], 1.0 + double(ps.id[i]));
+        EXPECT_EQ(ps.narrow(Field::rho)[i], 1.0f + float(ps.id[i]));
         EXPECT_EQ(ps.narrow(Field::c11)[i], -float(ps.id[i]));
     }
 }

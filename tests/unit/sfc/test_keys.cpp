@@ -1,10 +1,14 @@
 // Acceptance 2 (issue 2): SFC keys round-trip and Hilbert neighbours are face-adjacent.
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "exasph/domain/sfc_order.hpp"
 #include "exasph/sfc/keys.hpp"
 
 using namespace exasph;
@@ -92,4 +96,25 @@ TEST(Keys, CoordinatesClampToTheBox) {
     EXPECT_EQ(key_coordinate(-5.0, box, 0), 0u);
     EXPECT_EQ(key_coordinate(5.0, box, 1), kKeyAxisMax);
     EXPECT_EQ(key_coordinate(0.0, box, 2), 1u << 20);
+}
+
+// compute_sfc_keys (blocks of points, vectorised) gives sfc_key's keys for every point, including
+// block remainders, points outside the box and NaN.
+TEST(Keys, BatchKeysEqualSingleKeys) {
+    Box<double> box;
+    box.lo = {-1, -2, 0};
+    box.hi = {1, 2, 3};
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.2, 3.2);
+    const std::size_t n = 3 * kHilbertBlock + 17;
+    std::vector<double> x(n), y(n), z(n);
+    for (std::size_t i = 0; i < n; ++i) x[i] = u(rng), y[i] = u(rng), z[i] = u(rng);
+    x[5] = std::nan("");
+    z[n - 1] = -std::numeric_limits<double>::infinity();
+    for (CurveKind kind : {CurveKind::hilbert, CurveKind::morton}) {
+        std::vector<std::uint64_t> keys(n);
+        compute_sfc_keys(x.data(), y.data(), z.data(), n, box, kind, keys.data());
+        for (std::size_t i = 0; i < n; ++i)
+            ASSERT_EQ(keys[i], sfc_key(x[i], y[i], z[i], box, kind)) << "point " << i;
+    }
 }

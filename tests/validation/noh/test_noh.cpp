@@ -36,7 +36,7 @@ TEST(Noh, N40LimitedViscosityReachesThePostShockState) {
     double shell_sum = 0, shell_count = 0;
     for (std::size_t i = 0; i < sim.n_owned(); ++i) {
         double x = ps[Field::x_m1][i], y = ps[Field::y_m1][i], z = ps[Field::z_m1][i];
-        double r = std::sqrt(x * x + y * y + z * z), rho = ps[Field::rho][i];
+        double r = std::sqrt(x * x + y * y + z * z), rho = ps.value(Field::rho, i);
         if (r > 0.05 && r < 0.15) shell_sum += rho, shell_count += 1;
         int b = int(r / width);
         if (b < bins) sum[b] += rho, count[b] += 1;

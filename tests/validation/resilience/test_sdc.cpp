@@ -41,7 +41,7 @@ Outcome run(const Config& cfg, int steps) {
         while (sim.step_count() < steps) sim.step();
         const auto& ps = sim.particles();
         for (std::size_t i = 0; i < sim.n_owned(); ++i)
-            o.particles[ps.id[i]] = {ps[Field::rho][i], ps[Field::vx][i], ps[Field::vy][i],
+            o.particles[ps.id[i]] = {ps.value(Field::rho, i), ps[Field::vx][i], ps[Field::vy][i],
                                      ps[Field::vz][i], ps[Field::u][i]};
         const auto& d = sim.diagnostics();
         o.mass = d.mass;
@@ -143,6 +143,7 @@ TEST(Sdc, InjectedBitFlipsAreDetectedAndRolledBack) {
         Config on = sedov20();
         on.on_sdc = "rollback";
         on.sdc_rollback_every = 2;
+        on.sdc_rollback_store = "memory"; // the disk store is tested by io_sdc_mpi
         on.inject_fault = spec;
         const Outcome guarded = run(on, steps);
         const bool detected = guarded.recoveries > 0 && guarded.detected_at >= step &&

@@ -35,7 +35,7 @@ TEST(Sedov, N50VolumeElementsMatchesTheExactSolution) {
         double x = ps[Field::x_m1][i], y = ps[Field::y_m1][i], z = ps[Field::z_m1][i];
         int b = int(std::sqrt(x * x + y * y + z * z) / rmax * bins);
         if (b >= bins) continue;
-        sum[b] += ps[Field::rho][i];
+        sum[b] += ps.value(Field::rho, i);
         count[b] += 1;
     }
     int best = 0;

@@ -31,7 +31,7 @@ Outcome run_square_patch(int threads) {
         o.max_vx = std::max(o.max_vx, std::abs(ps[Field::vx][i]));
         o.max_vz = std::max(o.max_vz, std::abs(ps[Field::vz][i]));
         for (Field f : {Field::x, Field::vx, Field::rho, Field::u})
-            o.finite = o.finite && std::isfinite(ps[f][i]);
+            o.finite = o.finite && std::isfinite(ps.value(f, i));
     }
     return o;
 }
