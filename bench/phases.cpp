@@ -51,8 +51,7 @@ struct Setup {
         keys = sort_along_curve(ps, box, CurveKind::hilbert);
         build_tree();
         search();
-        compute_density(ps, nl, box, kernel.view());
-        compute_eos(ps, EosParams{}, ps.size());
+        compute_density(ps, nl, box, kernel.view(), EosParams{});
         compute_iad(ps, nl, box, kernel.view());
     }
     void build_tree() {

@@ -25,7 +25,7 @@ enum class Field : std::uint8_t {
     rho0,  // reference density of the Tait EOS (SPEC 4), measured at step 0
     p0,    // background pressure of the Tait EOS (SPEC 4, 9.1)
     rho,   // density (SPEC 3)
-    omega, // grad-h term Omega (SPEC 3)
+    pgrad, // P / (Omega k^2): pressure-force coefficient with the grad-h term Omega (SPEC 3, 6)
     p,     // pressure
     c,     // sound speed
     c11,
@@ -103,7 +103,7 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::rho0,     "rho0",     "mass/length^3", kState | kOptional, "Tait EOS reference density"},
     {Field::p0,       "p0",       "pressure",    kState | kOptional, "Tait EOS background pressure"},
     {Field::rho,      "rho",      "mass/length^3", kDerived | kHaloDensity | kSnapshot, "density"},
-    {Field::omega,    "omega",    "1",           kDerived | kHaloDensity, "grad-h correction Omega"},
+    {Field::pgrad,    "pgrad",    "length^5/(mass*time^2)", kDerived | kHaloDensity, "pressure-force coefficient P/(Omega k^2)"},
     {Field::p,        "p",        "pressure",    kDerived | kHaloDensity | kSnapshot, "pressure"},
     {Field::c,        "c",        "length/time", kDerived | kHaloDensity | kSnapshot, "sound speed"},
     {Field::c11,      "c11",      "1/length^2",  kDerived | kHaloIad, "IAD matrix C_11"},
@@ -162,7 +162,7 @@ constexpr const FieldInfo& field_info(Field f) {
 constexpr bool is_narrow(Field f) {
     switch (f) {
     case Field::rho:
-    case Field::omega:
+    case Field::pgrad:
     case Field::p:
     case Field::c:
     case Field::c11:

@@ -148,10 +148,11 @@ class Simulation {
         timer_.stop(kSync);
         find_neighbours();
         timer_.stop(kNeighbours);
-        compute_density(ps_, nlists_, box_, kernel_.view());
-        if (step_ == 0 && eos_.kind == EosKind::tait) capture_reference_density();
+        // density, EOS and the pressure-force coefficient in one pass; the Tait EOS takes its
+        // reference density from the first step
+        compute_density(ps_, nlists_, box_, kernel_.view(), eos_,
+                        step_ == 0 && eos_.kind == EosKind::tait);
         timer_.stop(kDensity);
-        compute_eos(ps_, eos_, n_owned());
         domain_.exchange_halos(ps_, kHaloDensity);
         timer_.stop(kEos);
         compute_iad(ps_, nlists_, box_, kernel_.view(), cfg_.av_limiter);
@@ -281,10 +282,6 @@ class Simulation {
     }
 
     // SPEC 4: the Tait reference density is the density measured at step 0, per particle.
-    void capture_reference_density() {
-        std::copy_n(ps_.narrow(Field::rho), n_owned(), ps_[Field::rho0].begin());
-    }
-
     // SPEC 7: Courant limit over all particles (with gravity also the acceleration limit), at
     // most 1.1 x the previous step; the first step is the case's dt0 (or less, if the limits
     // demand it). One collective (min).

@@ -46,32 +46,32 @@ double for_each_neighbourhood(const NeighbourLists<T>& nl, Body&& body) {
     return least;
 }
 
+// SPEC 3 and 4 in one pass: ρ, Ω (and k with volume elements), then P and c from the equation
+// of state, and the pressure-force coefficient P / (Ω k²) of SPEC 6 that momentum–energy reads for
+// both members of a pair (Ω is not needed otherwise, so it is not stored: one float array and one
+// division per pair less). With `capture_rho0` (Tait, first step) the density becomes the
+// reference density rho0 first.
 template <class T>
 void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
-                     const KernelView<T>& k) {
+                     const KernelView<T>& k, const EosParams& eos = {}, bool capture_rho0 = false) {
     auto p = make_view(ps);
-    for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
-        auto r = density_kern(i, nb, p, box, k);
-        p.narrow(Field::rho)[i] = float(r.rho);
-        if (p[Field::kx]) p[Field::kx][i] = r.kx;
-        p.narrow(Field::omega)[i] = float(r.omega);
-        p.narrow(Field::nc)[i] = float(r.nc);
-    });
-}
-
-template <class T>
-void compute_eos(ParticleSet<T>& ps, const EosParams& eos, std::size_t n_owned) {
-    auto p = make_view(ps);
-    const auto n = static_cast<std::int64_t>(n_owned);
     const T gamma = T(eos.gamma), c0 = T(eos.c0);
     const bool tait = eos.kind == EosKind::tait;
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) {
-        auto r = tait ? tait_eos(T(p.narrow(Field::rho)[i]), p[Field::rho0][i], p[Field::p0][i], c0)
-                      : ideal_gas_eos(T(p.narrow(Field::rho)[i]), p[Field::u][i], gamma);
-        p.narrow(Field::p)[i] = float(r.p);
-        p.narrow(Field::c)[i] = float(r.c);
-    }
+    for_each_neighbourhood(nl, [&](std::uint32_t i, NeighbourSpan nb) {
+        auto r = density_kern(i, nb, p, box, k);
+        const float rho = float(r.rho); // single precision (is_narrow)
+        p.narrow(Field::rho)[i] = rho;
+        if (p[Field::kx]) p[Field::kx][i] = r.kx;
+        p.narrow(Field::nc)[i] = float(r.nc);
+        if (capture_rho0) p[Field::rho0][i] = T(rho);
+        auto e = tait ? tait_eos(T(rho), p[Field::rho0][i], p[Field::p0][i], c0)
+                      : ideal_gas_eos(T(rho), p[Field::u][i], gamma);
+        p.narrow(Field::p)[i] = float(e.p);
+        p.narrow(Field::c)[i] = float(e.c);
+        // k = rho for standard SPH (the stored value, as the pair terms read it)
+        const T kk = p[Field::kx] ? r.kx : T(rho);
+        p.narrow(Field::pgrad)[i] = float(e.p / (r.omega * kk * kk));
+    });
 }
 
 // Throws Error naming a particle whose tau is singular (SPEC 5). With `with_gradient`, also

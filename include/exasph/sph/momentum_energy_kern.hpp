@@ -94,10 +94,10 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
     const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
     const T *h = p[Field::h], *m = p[Field::m];
-    // Single precision (is_narrow): rho, P, c, Omega of both members of a pair come from the
-    // same stored values, so the pair terms stay antisymmetric.
+    // Single precision (is_narrow): rho, c, P/(Omega k^2) (and P) of both members of a pair come
+    // from the same stored values, so the pair terms stay antisymmetric.
     const float *rho = p.narrow(Field::rho), *pr = p.narrow(Field::p), *c = p.narrow(Field::c),
-                *omega = p.narrow(Field::omega);
+                *pgrad = p.narrow(Field::pgrad);
     const T* alpha = p[Field::alpha];
     const T ha = h[a], inv_ha = T(1) / ha, inv_ha3 = inv_ha * inv_ha * inv_ha;
     const T rho_a = rho[a], inv_rho_a = T(1) / rho_a;
@@ -106,8 +106,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
     // Volume elements: the pressure terms carry X_a X_b / m_a and 1/k^2 in place of m_b and
     // 1/rho^2 (identical for X = m, where X_a / m_a = 1 and k = rho).
     const T xa_ma = kVolumeElements ? xm[a] / m[a] : T(1);
-    const T ka = kVolumeElements ? kx[a] : rho_a;
-    const T pa = T(pr[a]) / (T(omega[a]) * ka * ka) * xa_ma;
+    const T pa = T(pgrad[a]) * xa_ma;
     T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0, divv = 0, du_cond = 0;
     const T* u = p[Field::u];
     T ga[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -150,8 +149,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
                 r;
             pi_ab = wt < T(0) ? T(-0.5) * alpha_ab * (T(c[a]) + T(c[b]) - T(3) * wt) * wt : T(0);
         }
-        T kb = kVolumeElements ? kx[b] : T(rho[b]);
-        T pb = T(pr[b]) / (T(omega[b]) * kb * kb) * xa_ma;
+        T pb = T(pgrad[b]) * xa_ma;
         T inv_rho_b = T(1) / T(rho[b]);
         T mb = m[b];
         T gx = aax * inv_rho_a + abx * inv_rho_b; // A(h_a)/rho_a + A(h_b)/rho_b
@@ -164,7 +162,10 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
         az -= xb * (pa * aaz + pb * abz) + mb * half_pi * gz;
         T v_dot_a = vabx * aax + vaby * aay + vabz * aaz;
         du_p += xb * v_dot_a;
-        if constexpr (kAlphaField) divv -= xb / kb * v_dot_a; // the AV switch's input only
+        if constexpr (kAlphaField) { // the AV switch's input only
+            const T kb = kVolumeElements ? kx[b] : T(rho[b]);
+            divv -= xb / kb * v_dot_a;
+        }
         du_av += mb * pi_ab * (vabx * gx + vaby * gy + vabz * gz);
         if (kExtras && alpha_u > T(0)) {
             // Artificial conductivity (Price 2008): heat flows from hot to cold along the pair,

@@ -47,8 +47,7 @@ Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false,
     NeighbourLists<double> nl;
     testref::sort_and_find_neighbours(ps, box, crit, nl);
     KernelTable<double> k(sinc_kernel(6));
-    compute_density(ps, nl, box, k.view());
-    compute_eos(ps, EosParams{}, ps.size());
+    compute_density(ps, nl, box, k.view(), EosParams{});
     compute_iad(ps, nl, box, k.view(), diss.reconstruct);
     compute_momentum_energy(ps, nl, box, k.view(), diss);
 
