@@ -47,6 +47,15 @@ expect_rejected "smoothing length" -n 4 -s 1
 expect_rejected "--theta" --init evrard --theta 1.5
 expect_rejected "open box" --init sedov --lattice -n 10 --G 1 -s 1
 
+# A rollback directory that cannot be created (below a file): output I/O failure, exit code 3,
+# one line naming the rollback point.
+msg=$("$exe" --init sedov -n 10 -s 2 --sdc-rollback-dir "$work/run/diagnostics.csv/sub" \
+    --out "$work/rb" 2>&1 >/dev/null)
+rc=$?
+[ $rc -eq 3 ] || fail "unwritable --sdc-rollback-dir exited $rc, expected 3: $msg"
+echo "$msg" | grep -q "rollback point" || fail "unwritable --sdc-rollback-dir: $msg"
+[ "$(echo "$msg" | wc -l)" -eq 1 ] || fail "unwritable --sdc-rollback-dir: more than one line: $msg"
+
 "$exe" --help | grep -q -- "--kernel-exponent" || fail "--help lacks options"
 "$exe" --version | grep -q "exasph" || fail "--version"
 

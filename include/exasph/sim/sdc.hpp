@@ -133,20 +133,20 @@ class StateFile {
             std::error_code ec;
             const auto dir = std::filesystem::path(path_).parent_path();
             if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-            if (ec)
+            if (ec) // exit code 3: output I/O failure, like an unwritable --out
                 throw Error("cannot create the directory of the rollback point " + path_ + ": " +
                                 ec.message(),
-                            1, true);
+                            3, true);
         }
         std::FILE* f = std::fopen(tmp.c_str(), "wb");
-        if (!f) throw Error("cannot write the rollback point " + tmp, 1, true);
+        if (!f) throw Error("cannot write the rollback point " + tmp, 3, true);
         const std::uint64_t head[3] = {n, state.size(), state_sum(ps, n, state)};
         bool ok = std::fwrite(head, sizeof head, 1, f) == 1;
         ok = ok && std::fwrite(ps.id.data(), sizeof(std::uint64_t), n, f) == n;
         for (Field fld : state) ok = ok && std::fwrite(ps.data(fld), sizeof(T), n, f) == n;
         ok = std::fclose(f) == 0 && ok;
         if (!ok || std::rename(tmp.c_str(), path_.c_str()) != 0)
-            throw Error("cannot write the rollback point " + path_ + " (disk full?)", 1, true);
+            throw Error("cannot write the rollback point " + path_ + " (disk full?)", 3, true);
         written_ = true;
     }
 
