@@ -236,20 +236,13 @@ class StateGuard {
     void seal(const ParticleSet<T>& ps, std::size_t n) {
         fields_ = ps.fields(kState);
         hashes_.resize(n);
-        const auto blocks = std::int64_t((n + kHashBlock - 1) / kHashBlock);
-#pragma omp parallel for schedule(static)
-        for (std::int64_t b = 0; b < blocks; ++b) {
-            std::uint32_t h[kHashBlock];
-            const std::size_t first = std::size_t(b) * kHashBlock;
-            const std::size_t count = std::min(kHashBlock, n - first);
-            sealed_hashes(ps, first, count, h);
+        over_hash_blocks(ps, n, [&](std::size_t first, std::size_t count, const std::uint32_t* h) {
             std::copy_n(h, count, hashes_.begin() + std::ptrdiff_t(first));
-        }
+            return n;
+        });
         sealed_ = true;
     }
-    void unseal() {
-        sealed_ = false;
-    }
+    void unseal() { sealed_ = false; }
 
     // Empty when the state is consistent, else what is wrong (the first particle found).
     // `dt` and the accelerations are those of the last step (press_ok: they are valid);
@@ -258,21 +251,13 @@ class StateGuard {
                       bool press_ok, bool u_positive) const {
         const auto nn = std::int64_t(n);
         std::int64_t bad_hash = nn, bad_physics = nn;
-        if (sealed_ && hashes_.size() == n) {
-            const auto blocks = std::int64_t((n + kHashBlock - 1) / kHashBlock);
-#pragma omp parallel for schedule(static) reduction(min : bad_hash)
-            for (std::int64_t b = 0; b < blocks; ++b) {
-                std::uint32_t h[kHashBlock];
-                const std::size_t first = std::size_t(b) * kHashBlock;
-                const std::size_t count = std::min(kHashBlock, n - first);
-                sealed_hashes(ps, first, count, h);
-                for (std::size_t k = 0; k < count; ++k)
-                    if (h[k] != hashes_[first + k]) {
-                        bad_hash = std::min(bad_hash, std::int64_t(first + k));
-                        break;
-                    }
-            }
-        }
+        if (sealed_ && hashes_.size() == n)
+            bad_hash = std::int64_t(over_hash_blocks(
+                ps, n, [&](std::size_t first, std::size_t count, const std::uint32_t* h) {
+                    for (std::size_t k = 0; k < count; ++k)
+                        if (h[k] != hashes_[first + k]) return first + k;
+                    return n;
+                }));
         std::string why;
 #pragma omp parallel for schedule(static) reduction(min : bad_physics)
         for (std::int64_t i = 0; i < nn; ++i)
@@ -336,6 +321,22 @@ class StateGuard {
         std::uint64_t h[kHashBlock];
         state_hash_block(ps, fields_, first, count, h);
         for (std::size_t k = 0; k < count; ++k) out[k] = std::uint32_t(h[k] ^ (h[k] >> 32));
+    }
+    // Runs body(first, count, hashes) on the sealed hashes of each block of the first n
+    // particles, in parallel; returns the least value the body returned (n for none).
+    template <class Body>
+    std::size_t over_hash_blocks(const ParticleSet<T>& ps, std::size_t n, Body body) const {
+        const auto blocks = std::int64_t((n + kHashBlock - 1) / kHashBlock);
+        std::size_t least = n;
+#pragma omp parallel for schedule(static) reduction(min : least)
+        for (std::int64_t b = 0; b < blocks; ++b) {
+            std::uint32_t h[kHashBlock];
+            const std::size_t first = std::size_t(b) * kHashBlock;
+            const std::size_t count = std::min(kHashBlock, n - first);
+            sealed_hashes(ps, first, count, h);
+            least = std::min(least, std::size_t(body(first, count, h)));
+        }
+        return least;
     }
 
     std::vector<std::uint32_t> hashes_;

@@ -84,8 +84,9 @@ EXASPH_HD EXASPH_INLINE IadProduct<T> iad_times(const ParticleView<T>& p, std::u
 //             +1/4 sum_b m_b Pi_ab v_ab . [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
 // kExtras: conductivity or the limiter may be on. kAlphaField: alpha per particle (the AV
 // switch, which also wants the velocity divergence), else the constant diss.alpha (divv is
-// then not computed). kVolumeElements: X and k are fields; without them
-// X = m and k = rho are read once per neighbour, not twice through aliased pointers.
+// then not computed). kVolumeElements: X and k are fields; without them X = m is read once per
+// neighbour (not twice through an aliased pointer) and X_a / m_a = 1. P/(Om k^2) comes
+// precomputed per particle (Field::pgrad, set by the density pass).
 template <class T, bool kExtras = true, bool kAlphaField = true, bool kVolumeElements = true>
 EXASPH_HD MomentumEnergyResult<T>
 momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p, const Box<T>& box,
