@@ -12,7 +12,7 @@
 #include "exasph/cases/evrard.hpp"
 #include "exasph/domain/domain.hpp"
 #include "exasph/gravity/gravity_solver.hpp"
-#include "exasph/sph/sinc_kernel.hpp"
+#include "exasph/kernel/sinc_kernel.hpp"
 
 using namespace exasph;
 
@@ -21,8 +21,8 @@ namespace {
 void bm_gravity(benchmark::State& state) {
     EvrardParams ep;
     ep.side = int(state.range(0));
-    auto ic = make_evrard<double>(ep, UnitCubePoints::lattice(std::uint64_t(ep.side)), 0, 1,
-                                  MPI_COMM_SELF);
+    auto ic = make_evrard<double>(
+        ep, CaseContext::one_rank(UnitCubePoints::lattice(std::uint64_t(ep.side))));
     auto& ps = ic.particles;
     Domain<double> dom(MPI_COMM_SELF, 128, 64, CurveKind::hilbert);
     dom.init(ps, ic.box);
@@ -41,7 +41,7 @@ void bm_gravity(benchmark::State& state) {
 void bm_force_error(benchmark::State& state) {
     EvrardParams ep;
     ep.side = 28;
-    auto ic = make_evrard<double>(ep, UnitCubePoints::lattice(28), 0, 1, MPI_COMM_SELF);
+    auto ic = make_evrard<double>(ep, CaseContext::one_rank(UnitCubePoints::lattice(28)));
     auto& ps = ic.particles;
     Domain<double> dom(MPI_COMM_SELF, 128, 64, CurveKind::hilbert);
     dom.init(ps, ic.box);

@@ -12,8 +12,8 @@
 
 #include "exasph/domain/domain.hpp"
 #include "exasph/domain/sfc_order.hpp"
-#include "exasph/sph/hydro.hpp"
-#include "exasph/sph/sinc_kernel.hpp"
+#include "exasph/kernel/sinc_kernel.hpp"
+#include "exasph/sph/passes.hpp"
 
 using namespace exasph;
 

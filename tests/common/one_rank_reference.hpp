@@ -8,7 +8,7 @@
 #include <mpi.h>
 #include <omp.h>
 
-#include "exasph/sim/cases.hpp"
+#include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
 #include "mpi_gather.hpp"
 
@@ -45,7 +45,7 @@ inline OneRankReference one_rank_reference(const Config& cfg, int steps, int thr
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     if (rank == 0) {
         omp_set_num_threads(threads);
-        Simulation<double> sim(cfg, make_case<double>(cfg, MPI_COMM_SELF), MPI_COMM_SELF);
+        Simulation<double> sim(cfg, make_case(cfg, MPI_COMM_SELF), MPI_COMM_SELF);
         for (int s = 0; s < steps; ++s) sim.step();
         for (const auto& st : owned_state(sim)) ref.state[st.id] = st;
         ref.etot = sim.diagnostics().etot;

@@ -40,4 +40,31 @@ inline void perturb_positions(ParticleSet<double>& ps, const Box<double>& box, d
         }
 }
 
+// The unit cube [0, 1)^3, periodic on every axis or open.
+inline Box<double> unit_box(bool periodic) {
+    Box<double> box;
+    box.lo = {0, 0, 0};
+    box.hi = {1, 1, 1};
+    box.periodic = {periodic, periodic, periodic};
+    return box;
+}
+
+// n particles uniformly at random in the unit cube, ids first_id + i, h uniform in
+// [h_lo, h_hi); per particle x, y, z and h are drawn in that order from one generator.
+inline ParticleSet<double> random_cube(std::uint32_t n, std::uint64_t seed, double h_lo,
+                                       double h_hi, std::uint64_t first_id = 0) {
+    ParticleSet<double> ps;
+    ps.resize(n);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0), hs(h_lo, h_hi);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        ps.id[i] = first_id + i;
+        ps[Field::x][i] = u(rng);
+        ps[Field::y][i] = u(rng);
+        ps[Field::z][i] = u(rng);
+        ps[Field::h][i] = hs(rng);
+    }
+    return ps;
+}
+
 } // namespace exasph::testref

@@ -2,8 +2,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include <mpi.h>
-
+#include "exasph/cases/case_info.hpp"
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/cases/initial_h.hpp"
 #include "exasph/cases/unit_cube_points.hpp"
@@ -39,8 +38,7 @@ inline double evrard_potential_energy(const EvrardParams& ep) {
 // Each rank makes its share; the particle count is summed over the ranks (start-up collective)
 // so that every particle carries M / N.
 template <class T>
-InitialConditions<T> make_evrard(const EvrardParams& ep, const UnitCubePoints& points, int rank,
-                                 int nranks, MPI_Comm comm) {
+InitialConditions<T> make_evrard(const EvrardParams& ep, const CaseContext& ctx) {
     if (ep.side < 8) throw input_error("evrard: -n must be at least 8", true);
     InitialConditions<T> ic;
     ic.name = "evrard";
@@ -53,7 +51,8 @@ InitialConditions<T> make_evrard(const EvrardParams& ep, const UnitCubePoints& p
     ic.box.hi = {R, R, R};
     ic.box.periodic = {false, false, false};
     std::uint64_t first = 0, last = 0;
-    points.share(rank, nranks, first, last);
+    const UnitCubePoints points = ctx.points();
+    points.share(ctx.rank, ctx.nranks, first, last);
     auto& ps = ic.particles;
     ps.resize(0);
     for (std::uint64_t idx = first; idx < last; ++idx) {
@@ -71,8 +70,8 @@ InitialConditions<T> make_evrard(const EvrardParams& ep, const UnitCubePoints& p
         set_particle(ps, k, idx, {scale * p[0], scale * p[1], scale * p[2]}, {0.0, 0.0, 0.0},
                      ep.dt0, 0.0, 0.0, ep.u0 * ep.G * ep.mass / ep.radius);
     }
-    std::uint64_t total = ps.size();
-    MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_UINT64_T, MPI_SUM, comm);
+    // (a count, summed exactly in double precision below 2^53)
+    const auto total = std::uint64_t(ctx.sum_over_ranks(double(ps.size())));
     const double m = ep.mass / double(total);
     for (std::size_t k = 0; k < ps.size(); ++k) {
         const double x = ps[Field::x][k], y = ps[Field::y][k], z = ps[Field::z][k];
@@ -83,6 +82,19 @@ InitialConditions<T> make_evrard(const EvrardParams& ep, const UnitCubePoints& p
         ps[Field::h][k] = T(initial_smoothing_length(std::cbrt(m / evrard_density(ep, r)), ep.ng0));
     }
     return ic;
+}
+
+inline const CaseInfo& evrard_case() {
+    static const CaseInfo info = case_info<EvrardParams>(
+        "evrard", "Evrard collapse (SPEC 9.4), a cold self-gravitating gas sphere (G = 1)", true,
+        {{"gamma", &EvrardParams::gamma, "adiabatic index"},
+         {"mass", &EvrardParams::mass, "mass of the sphere"},
+         {"radius", &EvrardParams::radius, "radius of the sphere"},
+         {"u0", &EvrardParams::u0, "internal energy in G M / R"},
+         {"dt0", &EvrardParams::dt0, "first time step"},
+         {"t_end", &EvrardParams::t_end, "end time"}},
+        [](const EvrardParams& p, const CaseContext& c) { return make_evrard<double>(p, c); });
+    return info;
 }
 
 } // namespace exasph

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "exasph/cases/case_info.hpp"
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/cases/initial_h.hpp"
 #include "exasph/cases/unit_cube_points.hpp"
@@ -26,8 +27,7 @@ struct NohParams {
 };
 
 template <class T>
-InitialConditions<T> make_noh(const NohParams& np, const UnitCubePoints& points, int rank,
-                              int nranks) {
+InitialConditions<T> make_noh(const NohParams& np, const CaseContext& ctx) {
     if (np.side < 8) throw input_error("noh: -n must be at least 8", true);
     InitialConditions<T> ic;
     ic.name = "noh";
@@ -40,7 +40,8 @@ InitialConditions<T> make_noh(const NohParams& np, const UnitCubePoints& points,
     ic.box.hi = {R, R, R};
     ic.box.periodic = {false, false, false};
     std::uint64_t first = 0, last = 0;
-    points.share(rank, nranks, first, last);
+    const UnitCubePoints points = ctx.points();
+    points.share(ctx.rank, ctx.nranks, first, last);
     const double dx = 2 * np.radius * points.spacing();
     const double mass = np.density * dx * dx * dx;
     const double h0 = initial_smoothing_length(dx, np.ng0);
@@ -60,6 +61,19 @@ InitialConditions<T> make_noh(const NohParams& np, const UnitCubePoints& points,
         set_particle(ps, s, idx, {x, y, z}, {f * x, f * y, f * z}, np.dt0, h0, mass, np.u0);
     }
     return ic;
+}
+
+inline const CaseInfo& noh_case() {
+    static const CaseInfo info = case_info<NohParams>(
+        "noh", "Noh implosion (SPEC 9.3), a sphere falling onto its centre, exact solution", true,
+        {{"gamma", &NohParams::gamma, "adiabatic index"},
+         {"radius", &NohParams::radius, "radius of the sphere"},
+         {"speed", &NohParams::speed, "infall speed"},
+         {"u0", &NohParams::u0, "internal energy of the cold gas"},
+         {"dt0", &NohParams::dt0, "first time step"},
+         {"t_end", &NohParams::t_end, "end time"}},
+        [](const NohParams& p, const CaseContext& c) { return make_noh<double>(p, c); });
+    return info;
 }
 
 } // namespace exasph

@@ -2,8 +2,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include <mpi.h>
-
+#include "exasph/cases/case_info.hpp"
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/cases/initial_h.hpp"
 #include "exasph/cases/unit_cube_points.hpp"
@@ -28,8 +27,7 @@ struct SedovParams {
 // Each rank makes its share; the normalisation of the Gaussian is summed over all ranks
 // (start-up collective) so that the particles carry exactly E.
 template <class T>
-InitialConditions<T> make_sedov(const SedovParams& sp, const UnitCubePoints& points, int rank,
-                                int nranks, MPI_Comm comm) {
+InitialConditions<T> make_sedov(const SedovParams& sp, const CaseContext& ctx) {
     if (sp.side < 8)
         throw input_error("sedov: -n must be at least 8 (2h below half the box)", true);
     InitialConditions<T> ic;
@@ -41,8 +39,9 @@ InitialConditions<T> make_sedov(const SedovParams& sp, const UnitCubePoints& poi
     ic.box.lo = {T(-0.5), T(-0.5), T(-0.5)};
     ic.box.hi = {T(0.5), T(0.5), T(0.5)};
     ic.box.periodic = {true, true, true};
+    const UnitCubePoints points = ctx.points();
     std::uint64_t first = 0, last = 0;
-    points.share(rank, nranks, first, last);
+    points.share(ctx.rank, ctx.nranks, first, last);
     const double mass = sp.density / double(points.size());
     const double h0 = initial_smoothing_length(points.spacing(), sp.ng0);
     auto& ps = ic.particles;
@@ -60,10 +59,23 @@ InitialConditions<T> make_sedov(const SedovParams& sp, const UnitCubePoints& poi
         ps[Field::u][s] = T(w); // weight for now
         weight_sum += mass * w;
     }
-    MPI_Allreduce(MPI_IN_PLACE, &weight_sum, 1, MPI_DOUBLE, MPI_SUM, comm);
+    weight_sum = ctx.sum_over_ranks(weight_sum);
     for (std::size_t s = 0; s < ps.size(); ++s)
         ps[Field::u][s] = T(sp.u0 + sp.energy * double(ps[Field::u][s]) / weight_sum);
     return ic;
+}
+
+inline const CaseInfo& sedov_case() {
+    static const CaseInfo info = case_info<SedovParams>(
+        "sedov", "Sedov-Taylor blast wave (SPEC 9.2), periodic box, exact solution", true,
+        {{"gamma", &SedovParams::gamma, "adiabatic index"},
+         {"energy", &SedovParams::energy, "blast energy"},
+         {"width", &SedovParams::width, "width of the Gaussian energy deposit"},
+         {"u0", &SedovParams::u0, "internal energy of the cold gas"},
+         {"dt0", &SedovParams::dt0, "first time step"},
+         {"t_end", &SedovParams::t_end, "end time"}},
+        [](const SedovParams& p, const CaseContext& c) { return make_sedov<double>(p, c); });
+    return info;
 }
 
 } // namespace exasph

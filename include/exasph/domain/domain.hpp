@@ -57,42 +57,48 @@ class Domain {
         tree_.set_keys(std::move(leaf_keys));
     }
 
-    // Migration, SFC sort, local tree, halo discovery and the exchange of the kHaloSync fields.
-    // Uses exactly one collective (the global tree counts and maximum h), which also carries a
-    // per-rank alarm (e.g. corrupted state found before the step): when any rank raised one,
-    // sync stops right after the collective, changing nothing, and alarm() is true on all ranks.
-    // `on_clear`, if given, runs once every rank is known to have raised no alarm, before the
-    // particles move (the state is still the one checked: a verified rollback point).
-    template <class OnClear = void (*)()>
-    void sync(ParticleSet<T>& ps, const Box<T>& box, bool local_alarm = false,
-              OnClear&& on_clear = nullptr) {
+    // Migration, SFC sort, local tree, halo discovery and the exchange of the kHaloSync fields:
+    // count_particles() then distribute().
+    void sync(ParticleSet<T>& ps, const Box<T>& box) {
+        if (!count_particles(ps, box)) distribute(ps, box);
+    }
+
+    // The first half of the sync: the SFC keys and the one collective of the sync (the global
+    // tree counts and maximum h). The collective also carries a per-rank vote (e.g. corrupted
+    // state found before the step); returns whether any rank raised it, in which case the
+    // caller must not call distribute() and nothing has changed. Otherwise the particles are
+    // still where they were (a state that may be saved) until distribute() moves them.
+    bool count_particles(ParticleSet<T>& ps, const Box<T>& box, bool local_vote = false) {
         ps.resize(n_owned_); // drop last step's halos
-        auto keys = compute_keys(ps, box);
-        auto leaf = leaves_of(keys);
-        auto counts = global_counts(ps, leaf, local_alarm);
-        if (alarm_) return;
-        if constexpr (!std::is_pointer_v<std::decay_t<OnClear>>)
-            on_clear();
-        else if (on_clear)
-            on_clear();
-        asg_ = assign_leaves(counts, coll_.size());
+        keys_ = compute_keys(ps, box);
+        leaf_ = leaves_of(keys_);
+        bool any_vote = false;
+        counts_ = global_counts(ps, leaf_, local_vote, &any_vote);
+        return any_vote;
+    }
+
+    // The second half: migration, sort, local tree, halos.
+    void distribute(ParticleSet<T>& ps, const Box<T>& box) {
+        asg_ = assign_leaves(counts_, coll_.size());
         asg_.leaf_keys = tree_.keys();
-        asg_.leaf_count = counts;
+        asg_.leaf_count = counts_;
         std::vector<int> dest(ps.size());
 #pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < ps.size(); ++i) dest[i] = asg_.owner[leaf[i]];
+        for (std::size_t i = 0; i < ps.size(); ++i) dest[i] = asg_.owner[leaf_[i]];
         const bool moved = migrate_particles(ps, dest, coll_.rank(), coll_.size(),
                                              asg_.count[coll_.rank()], coll_.comm(), kTagMigrate);
         n_owned_ = ps.size();
         std::vector<int>().swap(dest); // the sort below is the step's memory peak
-        std::vector<std::uint32_t>().swap(leaf);
+        std::vector<std::uint32_t>().swap(leaf_);
         // The keys computed above still belong to the particles when none left or arrived.
-        keys = moved ? sort_along_curve(ps, box, curve_) : sort_by_keys(ps, std::move(keys));
+        auto keys = moved ? sort_along_curve(ps, box, curve_) : sort_by_keys(ps, std::move(keys_));
+        std::vector<std::uint64_t>().swap(keys_);
         local_tree_.build(keys.data(), std::uint32_t(n_owned_), leaf_size_);
         local_tree_.update_bounds(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
                                   ps.data(Field::h));
+        std::vector<std::uint64_t>().swap(keys);
         discover_halos(ps, box);
-        tree_.refine(counts, global_bucket_); // for the next step; counts belong to this tree
+        tree_.refine(counts_, global_bucket_); // for the next step; counts belong to this tree
     }
 
     // Sends the fields carrying `roles` from owners to the halo copies.
@@ -103,10 +109,6 @@ class Domain {
 
     std::size_t n_owned() const {
         return n_owned_;
-    }
-    // Whether some rank raised an alarm in the last sync (which then did nothing else).
-    bool alarm() const {
-        return alarm_;
     }
     std::size_t n_halo() const {
         return plan_.n_halo;
@@ -122,9 +124,6 @@ class Domain {
     }
     const GlobalTree& global_tree() const {
         return tree_;
-    }
-    const HaloPlan& halo_plan() const {
-        return plan_;
     }
     Collectives& collectives() {
         return coll_;
@@ -195,17 +194,17 @@ class Domain {
     // The one hot-path collective of the sync: particle count (sum) and maximum h (max) per leaf.
     std::vector<std::uint64_t> global_counts(const ParticleSet<T>& ps,
                                              const std::vector<std::uint32_t>& leaf,
-                                             bool local_alarm = false) {
+                                             bool local_vote = false, bool* any_vote = nullptr) {
         const std::size_t nl = tree_.num_leaves();
         std::vector<SumMax> stat(nl + 1);
-        stat[nl].max = local_alarm ? 1.0 : 0.0;
+        stat[nl].max = local_vote ? 1.0 : 0.0;
         const T* h = ps.data(Field::h);
         for (std::size_t i = 0; i < leaf.size(); ++i) {
             stat[leaf[i]].sum += 1.0;
             stat[leaf[i]].max = std::max(stat[leaf[i]].max, double(h[i]));
         }
         coll_.allreduce_sum_max(stat);
-        alarm_ = stat[nl].max > 0;
+        if (any_vote) *any_vote = stat[nl].max > 0;
         std::vector<std::uint64_t> counts(nl);
         leaf_hmax_.resize(nl);
         for (std::size_t l = 0; l < nl; ++l) {
@@ -249,7 +248,10 @@ class Domain {
     HaloPlan plan_;
     Octree<T> local_tree_, halo_tree_;
     std::size_t n_owned_ = 0;
-    bool alarm_ = false;
+    // Between count_particles() and distribute(): keys, global leaf and leaf counts.
+    std::vector<std::uint64_t> keys_;
+    std::vector<std::uint32_t> leaf_;
+    std::vector<std::uint64_t> counts_;
 };
 
 } // namespace exasph

@@ -130,7 +130,13 @@ struct Assignment {
     std::vector<std::uint64_t> leaf_keys;  // the global leaves this assignment refers to
     std::vector<std::uint64_t> leaf_count; // global particle count per leaf
 
-    int owner_of_leaf(std::uint32_t leaf) const { return owner[leaf]; }
+    // Owned particles of the most loaded rank over the mean (1 before any assignment).
+    double imbalance() const {
+        if (count.empty()) return 1.0;
+        double total = 0, most = 0;
+        for (auto v : count) total += double(v), most = std::max(most, double(v));
+        return most / (total / double(count.size()));
+    }
 };
 
 inline Assignment assign_leaves(const std::vector<std::uint64_t>& counts, int nranks) {

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <vector>
 
-#include "exasph/sph/kernel_table.hpp"
+#include "exasph/kernel/kernel_table.hpp"
 #include "exasph/util/annotate.hpp"
 
 namespace exasph {

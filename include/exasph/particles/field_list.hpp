@@ -4,6 +4,8 @@
 #include <string_view>
 #include <vector>
 
+#include "exasph/util/annotate.hpp"
+
 namespace exasph {
 
 // Every particle field, declared once. Sorting, (later) migration, halo exchange, snapshots and
@@ -134,10 +136,12 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
 }};
 // clang-format on
 
-// dv_i/dx_j in row-major order (the layout of VelocityGradient).
-inline constexpr std::array<Field, 9> kVelocityGradientFields{Field::gxx, Field::gxy, Field::gxz,
-                                                              Field::gyx, Field::gyy, Field::gyz,
-                                                              Field::gzx, Field::gzy, Field::gzz};
+// dv_i/dx_j in row-major order (the layout of VelocityGradient): component c of the gradient is
+// field gxx + c. A function, not a table, so that device code can call it.
+static_assert(int(Field::gzz) - int(Field::gxx) == 8, "the gradient fields are contiguous");
+EXASPH_HD constexpr Field velocity_gradient_field(int c) {
+    return static_cast<Field>(int(Field::gxx) + c);
+}
 
 // The fields carrying any of the role bits, in table order.
 inline std::vector<Field> fields_with_role(std::uint8_t roles) {

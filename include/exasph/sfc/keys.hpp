@@ -1,13 +1,12 @@
 #pragma once
 #include <cstdint>
 
+#include "exasph/sfc/curve_kind.hpp"
 #include "exasph/sfc/hilbert.hpp"
 #include "exasph/sfc/morton.hpp"
 #include "exasph/util/box.hpp"
 
 namespace exasph {
-
-enum class CurveKind { hilbert, morton };
 
 // Integer cell coordinate of x along one axis of the box, clamped to [0, 2^21 - 1].
 // Selects instead of branching, so that loops over particles vectorise (NaN gives 0).

@@ -2,8 +2,9 @@
 #include <cmath>
 #include <cstdint>
 
+#include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
-#include "exasph/sph/kernel_table.hpp"
+#include "exasph/sph/eos.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/box.hpp"
 
@@ -40,7 +41,7 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb, const
     const PeriodicImage<T> image(box);
 #pragma omp simd reduction(+ : k_sum, dh_sum, nc)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
-        std::uint32_t b = nb.index[n];
+        std::uint32_t b = nb[n];
         T dx = image(x[b] - x[a], 0);
         T dy = image(y[b] - y[a], 1);
         T dz = image(z[b] - z[a], 2);
@@ -59,5 +60,36 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb, const
     T omega = T(1) - static_cast<T>(dh_sum) / (T(3) * kx * h3);
     return {rho, kx, omega, nc};
 }
+
+// The density pass of one particle (SPEC 3 and 4): rho, nc (and k with volume elements), then P
+// and c from the equation of state, and the pressure-force coefficient P / (Omega k^2) of SPEC 6
+// that momentum-energy reads for both members of a pair (Omega itself is not stored: one float
+// array and one division per pair less). With `capture_rho0` (Tait, first step) the density
+// becomes the reference density rho0 first.
+template <class T>
+struct DensityEosKernel {
+    ParticleView<T> p;
+    Box<T> box;
+    KernelView<T> k;
+    EosParams eos;
+    bool capture_rho0 = false;
+
+    EXASPH_HD void operator()(std::uint32_t i, NeighbourSpan nb) const {
+        auto r = density_kern(i, nb, p, box, k);
+        const float rho = float(r.rho); // single precision (is_narrow)
+        p.narrow(Field::rho)[i] = rho;
+        if (p[Field::kx]) p[Field::kx][i] = r.kx;
+        p.narrow(Field::nc)[i] = float(r.nc);
+        if (capture_rho0) p[Field::rho0][i] = T(rho);
+        auto e = eos.kind == EosKind::tait
+                     ? tait_eos(T(rho), p[Field::rho0][i], p[Field::p0][i], T(eos.c0))
+                     : ideal_gas_eos(T(rho), p[Field::u][i], T(eos.gamma));
+        p.narrow(Field::p)[i] = float(e.p);
+        p.narrow(Field::c)[i] = float(e.c);
+        // k = rho for standard SPH (the stored value, as the pair terms read it)
+        const T kk = p[Field::kx] ? r.kx : T(rho);
+        p.narrow(Field::pgrad)[i] = float(e.p / (r.omega * kk * kk));
+    }
+};
 
 } // namespace exasph

@@ -2,8 +2,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
-#include "exasph/sph/kernel_table.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/box.hpp"
 
@@ -86,7 +86,7 @@ EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const Pa
 #pragma omp simd reduction(+ : t11, t12, t13, t22, t23, t33)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         T dx, dy, dz;
-        T vw = pair(nb.index[n], dx, dy, dz); // V_b W_ab(h_a)
+        T vw = pair(nb[n], dx, dy, dz); // V_b W_ab(h_a)
         t11 += dx * dx * vw;
         t12 += dx * dy * vw;
         t13 += dx * dz * vw;
@@ -96,7 +96,7 @@ EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const Pa
     }
     if (grad) {
         for (std::uint32_t n = 0; n < nb.count; ++n) {
-            const std::uint32_t b = nb.index[n];
+            const std::uint32_t b = nb[n];
             T dx, dy, dz;
             T vw = pair(b, dx, dy, dz);
             const T dv[3] = {vx[b] - vx[a], vy[b] - vy[a], vz[b] - vz[a]};
@@ -124,5 +124,31 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const Particl
     return p[Field::kx] ? iad_kern_with(a, nb, p, box, k, grad, p[Field::kx])
                         : iad_kern_with(a, nb, p, box, k, grad, p.narrow(Field::rho));
 }
+
+// The IAD pass of one particle: C_a stored in single precision (is_narrow), with
+// `with_gradient` also the velocity gradient (Field::gxx..gzz) for the reconstructed artificial
+// viscosity. Returns i where tau_a is singular, else +infinity (the launcher's minimum names the
+// first such particle).
+template <class T>
+struct IadKernel {
+    ParticleView<T> p;
+    Box<T> box;
+    KernelView<T> k;
+    bool with_gradient = false;
+
+    EXASPH_HD double operator()(std::uint32_t i, NeighbourSpan nb) const {
+        VelocityGradient<T> g;
+        auto r = iad_kern(i, nb, p, box, k, with_gradient ? &g : nullptr);
+        if (with_gradient)
+            for (int c = 0; c < 9; ++c) p[velocity_gradient_field(c)][i] = g.g[c];
+        p.narrow(Field::c11)[i] = float(r.c11);
+        p.narrow(Field::c12)[i] = float(r.c12);
+        p.narrow(Field::c13)[i] = float(r.c13);
+        p.narrow(Field::c22)[i] = float(r.c22);
+        p.narrow(Field::c23)[i] = float(r.c23);
+        p.narrow(Field::c33)[i] = float(r.c33);
+        return r.singular ? double(i) : 1e300;
+    }
+};
 
 } // namespace exasph

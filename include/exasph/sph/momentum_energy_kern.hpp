@@ -2,8 +2,9 @@
 #include <cmath>
 #include <cstdint>
 
+#include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
-#include "exasph/sph/kernel_table.hpp"
+#include "exasph/sph/timestep.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/box.hpp"
 
@@ -112,11 +113,11 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
     const T* u = p[Field::u];
     T ga[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     if (diss.reconstruct)
-        for (int c = 0; c < 9; ++c) ga[c] = p[kVelocityGradientFields[c]][a];
+        for (int g = 0; g < 9; ++g) ga[g] = p[velocity_gradient_field(g)][a];
     const PeriodicImage<T> image(box);
 #pragma omp simd reduction(+ : ax, ay, az, du_p, du_av, divv, du_cond) reduction(max : vsig_max)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
-        const std::uint32_t b = nb.index[n];
+        const std::uint32_t b = nb[n];
         // d = x_b - x_a = -r_ab
         T dx = image(x[b] - x[a], 0);
         T dy = image(y[b] - y[a], 1);
@@ -143,7 +144,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
             // Only pairs that really approach are dissipated: the heating Pi_ab v_ab . A stays
             // positive.
             T gb[9];
-            for (int c = 0; c < 9; ++c) gb[c] = p[kVelocityGradientFields[c]][b];
+            for (int g = 0; g < 9; ++g) gb[g] = p[velocity_gradient_field(g)][b];
             T eta = r / (ha > hb ? ha : hb);
             T wt =
                 reconstructed_approach(vabx, vaby, vabz, dx, dy, dz, ga, gb, eta, diss.eta_crit) /
@@ -182,5 +183,28 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
     }
     return {ax, ay, az, pa * du_p + T(0.25) * du_av + du_cond, vsig_max, divv};
 }
+
+// The momentum-energy pass of one particle: a, du/dt (and div v for the AV switch) stored;
+// returns the particle's Courant time step (SPEC 7) for the factor `courant`, so that signal
+// velocities are used where they are computed, not stored.
+template <class T, bool kExtras, bool kAlphaField, bool kVolumeElements>
+struct MomentumEnergyKernel {
+    ParticleView<T> p;
+    Box<T> box;
+    KernelView<T> k;
+    Dissipation<T> diss;
+    T courant;
+
+    EXASPH_HD T operator()(std::uint32_t i, NeighbourSpan nb) const {
+        auto r =
+            momentum_energy_kern<T, kExtras, kAlphaField, kVolumeElements>(i, nb, p, box, k, diss);
+        p[Field::ax][i] = r.ax;
+        p[Field::ay][i] = r.ay;
+        p[Field::az][i] = r.az;
+        p[Field::du][i] = r.du;
+        if (p[Field::divv]) p[Field::divv][i] = r.divv;
+        return courant_time_step(p[Field::h][i], r.vsig_max, T(p.narrow(Field::c)[i]), courant);
+    }
+};
 
 } // namespace exasph

@@ -3,7 +3,6 @@
 #include <limits>
 
 #include "exasph/util/annotate.hpp"
-#include "exasph/util/vec3.hpp"
 
 namespace exasph {
 
@@ -27,10 +26,6 @@ struct Box {
         if (d > T(0.5) * len) return d - len;
         if (d < T(-0.5) * len) return d + len;
         return d;
-    }
-
-    EXASPH_HD Vec3<T> min_image(Vec3<T> d) const {
-        return {min_image(d.x, 0), min_image(d.y, 1), min_image(d.z, 2)};
     }
 
     // Squared minimum-image distance between the boxes [alo, ahi] and [blo, bhi] (a point when

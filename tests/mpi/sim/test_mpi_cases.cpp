@@ -9,7 +9,7 @@
 #include <mpi.h>
 #include <omp.h>
 
-#include "exasph/sim/cases.hpp"
+#include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
 #include "mpi_gather.hpp"
 #include "one_rank_reference.hpp"
@@ -36,7 +36,7 @@ TEST_P(MpiCases, MatchOneRank) {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
     omp_set_num_threads(1);
-    Simulation<double> sim(cfg, make_case<double>(cfg));
+    Simulation<double> sim(cfg, make_case(cfg));
     for (int s = 0; s < steps; ++s) sim.step();
     auto all = allgather(owned_state(sim), MPI_COMM_WORLD);
     if (rank != 0) return;

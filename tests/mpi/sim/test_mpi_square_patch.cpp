@@ -10,7 +10,7 @@
 #include <mpi.h>
 #include <omp.h>
 
-#include "exasph/sim/cases.hpp"
+#include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
 #include "mpi_gather.hpp"
 #include "one_rank_reference.hpp"
@@ -38,7 +38,7 @@ TEST(MpiSquarePatch, MatchesOneRankAndKeepsOwnershipBalanceAndCollectives) {
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
     omp_set_num_threads(1);
     Config cfg = patch_config();
-    Simulation<double> sim(cfg, make_case<double>(cfg));
+    Simulation<double> sim(cfg, make_case(cfg));
     const std::uint64_t n = std::uint64_t(cfg.side) * cfg.side * cfg.side;
     for (int s = 0; s < kSteps; ++s) {
         auto c0 = sim.collective_count();

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "exasph/sim/glass.hpp"
+#include "exasph/glass/glass.hpp"
 
 using namespace exasph;
 

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
-#include "exasph/sim/checkpoint_interval.hpp"
+#include "exasph/run/checkpoint_interval.hpp"
 
 using namespace exasph;
 

@@ -6,7 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "exasph/sim/sdc.hpp"
+#include "exasph/sim/state_guard.hpp"
+#include "exasph/sim/state_store.hpp"
 
 using namespace exasph;
 

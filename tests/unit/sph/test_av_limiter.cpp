@@ -6,8 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "exasph/sph/hydro.hpp"
-#include "exasph/sph/sinc_kernel.hpp"
+#include "exasph/kernel/sinc_kernel.hpp"
+#include "exasph/sph/passes.hpp"
+#include "kernels.hpp"
 #include "neighbour_setup.hpp"
 #include "random_particles.hpp"
 
@@ -32,7 +33,7 @@ TEST(AvLimiter, IadVelocityGradientIsExactForALinearFlow) {
     }
     NeighbourLists<double> nl;
     testref::sort_and_find_neighbours(ps, box, NeighbourCriterion::symmetric, nl);
-    KernelTable<double> k(sinc_kernel(6));
+    const auto& k = testref::sinc6();
     compute_density(ps, nl, box, k.view());
     compute_iad(ps, nl, box, k.view(), true);
     // Away from the periodic seam, where the linear field jumps, every particle sees it exactly.
@@ -45,7 +46,7 @@ TEST(AvLimiter, IadVelocityGradientIsExactForALinearFlow) {
         if (!inside) continue;
         ++checked;
         for (int e = 0; e < 9; ++e)
-            worst = std::max(worst, std::abs(ps[kVelocityGradientFields[e]][i] - kG[e]));
+            worst = std::max(worst, std::abs(ps[velocity_gradient_field(e)][i] - kG[e]));
     }
     std::printf("%zu particles: max |G - G_exact| %.3e\n", checked, worst);
     EXPECT_GT(checked, 100u);

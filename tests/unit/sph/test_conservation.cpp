@@ -5,8 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "exasph/sph/hydro.hpp"
-#include "exasph/sph/sinc_kernel.hpp"
+#include "exasph/kernel/sinc_kernel.hpp"
+#include "exasph/sph/passes.hpp"
+#include "kernels.hpp"
 #include "neighbour_setup.hpp"
 #include "random_particles.hpp"
 
@@ -46,7 +47,7 @@ Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false,
     for (auto& a : ps[Field::alpha]) a = alpha(rng);
     NeighbourLists<double> nl;
     testref::sort_and_find_neighbours(ps, box, crit, nl);
-    KernelTable<double> k(sinc_kernel(6));
+    const auto& k = testref::sinc6();
     compute_density(ps, nl, box, k.view(), EosParams{});
     compute_iad(ps, nl, box, k.view(), diss.reconstruct);
     compute_momentum_energy(ps, nl, box, k.view(), diss);

@@ -5,8 +5,9 @@
 #include <gtest/gtest.h>
 
 #include "exasph/domain/sfc_order.hpp"
-#include "exasph/sph/hydro.hpp"
-#include "exasph/sph/sinc_kernel.hpp"
+#include "exasph/kernel/sinc_kernel.hpp"
+#include "exasph/sph/passes.hpp"
+#include "kernels.hpp"
 #include "random_particles.hpp"
 
 using namespace exasph;
@@ -38,7 +39,7 @@ TEST_P(LatticeDensity, MatchesTrueDensityOmegaIsOneAndEosIsApplied) {
     s.ps = testref::periodic_lattice(16, GetParam(), s.box);
     prepare(s);
     for (std::size_t i = 0; i < s.ps.size(); ++i) s.ps[Field::u][i] = 1.0 + 1e-3 * double(i % 17);
-    KernelTable<double> k(sinc_kernel(6));
+    const auto& k = testref::sinc6();
     compute_density(s.ps, s.nl, s.box, k.view());
     double max_rho_err = 0, max_omega_err = 0, max_pgrad_err = 0;
     auto view = make_view(s.ps);
@@ -81,7 +82,7 @@ TEST(Iad, InverseOfTauOnALatticeIsIsotropic) {
     Prepared s;
     s.ps = testref::periodic_lattice(12, 100, s.box);
     prepare(s);
-    KernelTable<double> k(sinc_kernel(6));
+    const auto& k = testref::sinc6();
     compute_density(s.ps, s.nl, s.box, k.view());
     compute_iad(s.ps, s.nl, s.box, k.view());
     // tau = (1/3) I * sum V r^2 W: C is diagonal with equal entries, off-diagonals vanish. The

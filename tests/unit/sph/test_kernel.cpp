@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "exasph/sph/sinc_kernel.hpp"
+#include "exasph/kernel/sinc_kernel.hpp"
 
 using namespace exasph;
 

@@ -9,6 +9,7 @@
 
 #include "exasph/domain/sfc_order.hpp"
 #include "exasph/tree/neighbour_lists.hpp"
+#include "random_particles.hpp"
 
 using namespace exasph;
 
@@ -75,21 +76,8 @@ TEST(NeighbourCodec, ArenaKeepsRecordsInPlaceAcrossBlocks) {
 // same order. (Sets are checked against brute force in test_neighbours.)
 TEST(NeighbourLists, GroupExpansionIsTheSearchOrderAndCompact) {
     const std::uint32_t n = 30000;
-    ParticleSet<double> ps;
-    ps.resize(n);
-    std::mt19937_64 rng(3);
-    std::uniform_real_distribution<double> u(0.0, 1.0), hs(0.035, 0.05);
-    for (std::uint32_t i = 0; i < n; ++i) {
-        ps.id[i] = i;
-        ps[Field::x][i] = u(rng);
-        ps[Field::y][i] = u(rng);
-        ps[Field::z][i] = u(rng);
-        ps[Field::h][i] = hs(rng);
-    }
-    Box<double> box;
-    box.lo = {0, 0, 0};
-    box.hi = {1, 1, 1};
-    box.periodic = {true, true, true};
+    ParticleSet<double> ps = testref::random_cube(n, 3, 0.035, 0.05);
+    const Box<double> box = testref::unit_box(true);
     auto keys = sort_along_curve(ps, box, CurveKind::hilbert);
     Octree<double> tree;
     tree.build(keys.data(), n, 64);

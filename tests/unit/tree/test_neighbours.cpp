@@ -8,6 +8,7 @@
 #include "brute_force_neighbours.hpp"
 #include "exasph/domain/sfc_order.hpp"
 #include "exasph/tree/neighbour_lists.hpp"
+#include "random_particles.hpp"
 
 using namespace exasph;
 
@@ -22,20 +23,8 @@ struct Cloud {
 // 20,000 random particles in the unit cube with h varying by a factor of three.
 Cloud random_cloud(bool periodic, CurveKind curve) {
     Cloud c;
-    const std::uint32_t n = 20000;
-    c.ps.resize(n);
-    std::mt19937_64 rng(periodic ? 11 : 12);
-    std::uniform_real_distribution<double> u(0.0, 1.0), hs(0.03, 0.09);
-    for (std::uint32_t i = 0; i < n; ++i) {
-        c.ps.id[i] = i;
-        c.ps[Field::x][i] = u(rng);
-        c.ps[Field::y][i] = u(rng);
-        c.ps[Field::z][i] = u(rng);
-        c.ps[Field::h][i] = hs(rng);
-    }
-    c.box.lo = {0, 0, 0};
-    c.box.hi = {1, 1, 1};
-    c.box.periodic = {periodic, periodic, periodic};
+    c.ps = testref::random_cube(20000, periodic ? 11 : 12, 0.03, 0.09);
+    c.box = testref::unit_box(periodic);
     fit_open_axes(c.box, c.ps);
     c.keys = sort_along_curve(c.ps, c.box, curve);
     return c;

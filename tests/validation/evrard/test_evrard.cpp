@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "exasph/cases/evrard.hpp"
-#include "exasph/sim/cases.hpp"
+#include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
 
 using namespace exasph;
@@ -19,7 +19,7 @@ TEST(Evrard, N25GlassConservesEnergyAndBounces) {
     cfg.init = "evrard";
     cfg.side = 25;
     const double t_end = 1.2;
-    Simulation<double> sim(cfg, make_case<double>(cfg));
+    Simulation<double> sim(cfg, make_case(cfg));
     const auto d0 = sim.diagnostics();
     const double epot_exact = evrard_potential_energy(EvrardParams{});
     std::printf(

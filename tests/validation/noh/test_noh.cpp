@@ -8,8 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "exasph/sim/cases.hpp"
+#include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
+#include "radial_profile.hpp"
 
 using namespace exasph;
 
@@ -21,7 +22,7 @@ TEST(Noh, N40LimitedViscosityReachesThePostShockState) {
     cfg.volume_elements = true;
     cfg.conductivity = 2.0;
     const double t_end = 0.6;
-    Simulation<double> sim(cfg, make_case<double>(cfg));
+    Simulation<double> sim(cfg, make_case(cfg));
     const double e0 = sim.diagnostics().etot;
     sim.set_end_time(t_end);
     while (sim.time() < t_end * (1 - 1e-12)) sim.step();
@@ -30,25 +31,22 @@ TEST(Noh, N40LimitedViscosityReachesThePostShockState) {
     // Density at the positions it was computed at (x_{n-1} after the update), at time t - dt.
     const auto& ps = sim.particles();
     const double t_rho = sim.time() - sim.diagnostics().dt;
-    const double width = 0.005, rmax = 0.4;
-    const int bins = int(rmax / width);
-    std::vector<double> sum(bins, 0), count(bins, 0);
+    const double width = 0.005;
+    const auto prof = testref::radial_density(ps, sim.n_owned(), 0.4, 80);
     double shell_sum = 0, shell_count = 0;
     for (std::size_t i = 0; i < sim.n_owned(); ++i) {
         double x = ps[Field::x_m1][i], y = ps[Field::y_m1][i], z = ps[Field::z_m1][i];
-        double r = std::sqrt(x * x + y * y + z * z), rho = ps.value(Field::rho, i);
-        if (r > 0.05 && r < 0.15) shell_sum += rho, shell_count += 1;
-        int b = int(r / width);
-        if (b < bins) sum[b] += rho, count[b] += 1;
+        double r = std::sqrt(x * x + y * y + z * z);
+        if (r > 0.05 && r < 0.15) shell_sum += ps.value(Field::rho, i), shell_count += 1;
     }
     ASSERT_GT(shell_count, 1000);
     const double shell = shell_sum / shell_count;
     // Outwards from the shell, the first bin whose mean is below 32, interpolated linearly
     // between bin centres.
     double r_shock = -1;
-    for (int b = int(0.05 / width) + 1; b < bins && r_shock < 0; ++b) {
-        ASSERT_GT(count[b], 0);
-        double rho_b = sum[b] / count[b], rho_in = sum[b - 1] / count[b - 1];
+    for (int b = int(0.05 / width) + 1; b < prof.bins() && r_shock < 0; ++b) {
+        ASSERT_GT(prof.count[b], 0);
+        double rho_b = prof.mean(b), rho_in = prof.mean(b - 1);
         if (rho_b < 32) r_shock = width * (b - 0.5 + (rho_in - 32) / (rho_in - rho_b));
     }
     const double r_exact = t_rho / 3;

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
-#include "exasph/sim/cases.hpp"
+#include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
 
 using namespace exasph;
@@ -37,7 +37,7 @@ struct Outcome {
 Outcome run(const Config& cfg, int steps) {
     Outcome o;
     try {
-        Simulation<double> sim(cfg, make_case<double>(cfg, MPI_COMM_SELF), MPI_COMM_SELF);
+        Simulation<double> sim(cfg, make_case(cfg, MPI_COMM_SELF), MPI_COMM_SELF);
         while (sim.step_count() < steps) sim.step();
         const auto& ps = sim.particles();
         for (std::size_t i = 0; i < sim.n_owned(); ++i)
@@ -137,13 +137,13 @@ TEST(Sdc, InjectedBitFlipsAreDetectedAndRolledBack) {
         const std::string spec = std::to_string(step) + ":" + std::string(field_info(f).name) +
                                  ":" + std::to_string(id) + ":" + std::to_string(bit);
         Config off = sedov20();
-        off.on_sdc = "off";
+        off.on_sdc = SdcPolicy::off;
         off.inject_fault = spec;
         const bool harm = harmful(run(off, steps), clean);
         Config on = sedov20();
-        on.on_sdc = "rollback";
+        on.on_sdc = SdcPolicy::rollback;
         on.sdc_rollback_every = 2;
-        on.sdc_rollback_store = "memory"; // the disk store is tested by io_sdc_mpi
+        on.sdc_rollback_store = RollbackStore::memory; // the disk store is tested by io_sdc_mpi
         on.inject_fault = spec;
         const Outcome guarded = run(on, steps);
         const bool detected = guarded.recoveries > 0 && guarded.detected_at >= step &&

@@ -8,8 +8,9 @@
 #include <gtest/gtest.h>
 
 #include "exasph/exact/sedov.hpp"
-#include "exasph/sim/cases.hpp"
+#include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
+#include "radial_profile.hpp"
 
 using namespace exasph;
 
@@ -19,7 +20,7 @@ TEST(Sedov, N50VolumeElementsMatchesTheExactSolution) {
     cfg.side = 50;
     cfg.volume_elements = true;
     const double t_end = 0.05;
-    Simulation<double> sim(cfg, make_case<double>(cfg));
+    Simulation<double> sim(cfg, make_case(cfg));
     const double e0 = sim.diagnostics().etot;
     sim.set_end_time(t_end);
     while (sim.time() < t_end * (1 - 1e-12)) sim.step();
@@ -28,20 +29,12 @@ TEST(Sedov, N50VolumeElementsMatchesTheExactSolution) {
 
     // Radially binned density at the positions it was computed at (x_{n-1} after the update).
     const auto& ps = sim.particles();
-    const int bins = 100;
-    const double rmax = 0.5;
-    std::vector<double> sum(bins, 0), count(bins, 0);
-    for (std::size_t i = 0; i < sim.n_owned(); ++i) {
-        double x = ps[Field::x_m1][i], y = ps[Field::y_m1][i], z = ps[Field::z_m1][i];
-        int b = int(std::sqrt(x * x + y * y + z * z) / rmax * bins);
-        if (b >= bins) continue;
-        sum[b] += ps.value(Field::rho, i);
-        count[b] += 1;
-    }
+    const auto prof = testref::radial_density(ps, sim.n_owned(), 0.5, 100);
     int best = 0;
-    for (int b = 0; b < bins; ++b)
-        if (count[b] > 0 && sum[b] / count[b] > sum[best] / std::max(count[best], 1.0)) best = b;
-    const double r_peak = (best + 0.5) * rmax / bins;
+    for (int b = 0; b < prof.bins(); ++b)
+        if (prof.count[b] > 0 && prof.mean(b) > prof.sum[best] / std::max(prof.count[best], 1.0))
+            best = b;
+    const double r_peak = prof.centre(best);
     const double t_rho = sim.time() - d.dt;
     const double r_shock = SedovSolution(5.0 / 3.0).shock_radius(1.0, 1.0, t_rho);
     const double energy_error = std::abs(d.etot - e0) / std::abs(e0);

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
-#include "exasph/sim/cases.hpp"
+#include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
 
 using namespace exasph;
@@ -21,7 +21,7 @@ Outcome run_square_patch(int threads) {
     omp_set_num_threads(threads);
     Config cfg;
     cfg.side = 30;
-    Simulation<double> sim(cfg, make_case<double>(cfg));
+    Simulation<double> sim(cfg, make_case(cfg));
     sim.set_end_time(0.02);
     while (sim.time() < 0.02) sim.step();
     EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary(); // a clean run raises no alarm

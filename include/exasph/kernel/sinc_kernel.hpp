@@ -1,7 +1,7 @@
 #pragma once
 #include <cmath>
 
-#include "exasph/sph/kernel_table.hpp"
+#include "exasph/kernel/kernel_table.hpp"
 
 namespace exasph {
 

@@ -6,11 +6,12 @@
 
 #include <mpi.h>
 
+#include "exasph/config/config.hpp"
 #include "exasph/io/atomic_output.hpp"
+#include "exasph/io/output_state.hpp"
 #include "exasph/io/particle_io.hpp"
+#include "exasph/io/run_attributes.hpp"
 #include "exasph/io/xdmf.hpp"
-#include "exasph/sim/run_attributes.hpp"
-#include "exasph/sim/simulation.hpp"
 
 namespace exasph {
 
@@ -72,23 +73,22 @@ inline std::string numbered_path(const std::string& dir, const char* stem, std::
 // their owned particles collectively, no gather), with time/step/dt attributes, run attributes
 // on the root, and an XDMF sidecar. Written under a temporary name, renamed when complete.
 template <class T>
-std::string write_snapshot(const Simulation<T>& sim, const Config& cfg, const std::string& units,
+std::string write_snapshot(const OutputState<T>& run, const Config& cfg, const std::string& units,
                            const std::vector<Field>& fields, MPI_Comm comm) {
-    const std::int64_t step = sim.step_count();
+    const std::int64_t step = run.restart.step;
     const std::string path = numbered_path(cfg.out_dir, "snapshot", step, ".h5");
     const std::string group = "/Step#" + std::to_string(step);
     std::uint64_t n = 0;
     try {
         h5::File file = h5::File::create(temporary_name(path), comm);
         h5::Group root(file, "/", false);
-        write_run_attributes(root, cfg, sim.box(), sim.eos(), units);
-        h5::write_attribute(root, "dt0",
-                            sim.diagnostics().dt > 0 ? sim.diagnostics().dt : sim.dt0());
+        write_run_attributes(root, cfg, run.box, run.eos, units);
+        h5::write_attribute(root, "dt0", run.dt > 0 ? run.dt : run.dt0);
         h5::Group g(file, group, true);
-        h5::write_attribute(g, "time", sim.time());
+        h5::write_attribute(g, "time", run.restart.time);
         h5::write_attribute(g, "step", std::int64_t(step));
-        h5::write_attribute(g, "dt", sim.diagnostics().dt);
-        n = write_particle_fields(g, sim.particles(), sim.n_owned(), fields, true, comm);
+        h5::write_attribute(g, "dt", run.dt);
+        n = write_particle_fields(g, run.particles, run.n_owned, fields, true, comm);
         h5::write_attribute(g, "numParticles", std::int64_t(n));
         for (Field f : fields)
             h5::write_attribute(g, "unit:" + std::string(field_info(f).name),
@@ -106,7 +106,7 @@ std::string write_snapshot(const Simulation<T>& sim, const Config& cfg, const st
         const std::string xdmf = numbered_path(cfg.out_dir, "snapshot", step, ".xdmf");
         write_text_file(temporary_name(xdmf),
                         xdmf_text(std::filesystem::path(path).filename().string(), group, n,
-                                  sim.time(), names));
+                                  run.restart.time, names));
         std::filesystem::rename(temporary_name(xdmf), xdmf);
     }
     return path;

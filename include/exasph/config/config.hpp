@@ -3,13 +3,20 @@
 #include <string>
 #include <vector>
 
-#include "exasph/sfc/keys.hpp"
+#include "exasph/sfc/curve_kind.hpp"
 
 namespace exasph {
 
-// Everything a run is configured with; filled by the command line (apps/exasph.cpp).
+// Closed choices of the command line (names in config/parameters.hpp).
+enum class SdcPolicy { rollback, abort, off }; // --on-sdc
+enum class RollbackStore { disk, memory };     // --sdc-rollback-store
+
+// Everything a run is configured with. Each member that the command line sets is declared
+// once more, with its flag, help, unit and restart rule, in the parameter table
+// (config/parameters.hpp): CLI options, --help, the restart rule, checkpoint attributes and the
+// run header all come from that table.
 struct Config {
-    std::string init = "square-patch"; // case name
+    std::string init = "square-patch"; // case name or initial-conditions file
     int side = 30;                     // particles per axis (-n)
     std::int64_t steps = -1;           // -s; < 0: not given
     double t_end = -1.0;               // --t-end; < 0: not given
@@ -21,28 +28,24 @@ struct Config {
     double alpha = 1.0;           // artificial viscosity (SPEC 6); the maximum with --av-switch
     bool av_switch = false;       // evolve alpha per particle (Morris & Monaghan)
     double alpha_min = 0.05;      // AV switch: floor of alpha
-    double av_decay = 0.2;        // AV switch: decay rate in sound-crossing times of h
     double conductivity = 0.0;    // artificial conductivity alpha_u (0: off)
     bool av_limiter = false;      // viscosity from limited midpoint-reconstructed velocities
-    bool volume_elements = false; // generalised volume elements X = (m/rho)^ve_exponent
-    double ve_exponent = 0.7;
-    double G = -1.0;        // gravitational constant (--G); < 0: the case's (0: no gravity)
-    double theta = 0.5;     // Barnes-Hut opening angle (SPEC 8)
-    double accel_eps = 0.2; // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)
-    int gravity_bucket =
-        16; // gravity-tree leaf size: one interaction list per leaf (bench_gravity)
-    std::string on_sdc = "rollback"; // --on-sdc abort|rollback|off (silent data corruption)
-    int sdc_rollback_every = 10;     // steps between rollback points
-    // --sdc-rollback-store memory|disk: disk by default, because the copy in memory would add
-    // ~112 B to the ~300 B a particle needs (issue 7); the file is written every 10 steps.
-    std::string sdc_rollback_store = "disk";
-    std::string sdc_rollback_dir; // --sdc-rollback-dir (empty: out_dir)
-    std::string inject_fault;     // --inject-fault STEP:FIELD:ID:BIT (tests)
+    bool volume_elements = false; // generalised volume elements X = (m/rho)^0.7
+    double G = -1.0;              // gravitational constant (--G); < 0: the case's (0: no gravity)
+    double theta = 0.5;           // Barnes-Hut opening angle (SPEC 8)
+    double accel_eps = 0.2;     // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)
+    int gravity_leaf_size = 16; // gravity-tree leaf size: one interaction list per leaf
+    SdcPolicy on_sdc = SdcPolicy::rollback; // silent data corruption
+    int sdc_rollback_every = 10;            // steps between rollback points
+    // Disk by default: the copy in memory would add ~112 B to the ~300 B a particle needs.
+    RollbackStore sdc_rollback_store = RollbackStore::disk;
+    std::string sdc_rollback_dir; // empty: out_dir
+    std::string inject_fault;     // STEP:FIELD:ID:BIT (tests)
     int threads = 0;              // 0: OpenMP default
-    int bucket_size = 64;         // local octree leaf size
+    int leaf_size = 64;           // local octree leaf size
     int global_bucket = 128;      // global (top) tree leaf size: the unit of MPI load balance
     CurveKind curve = CurveKind::hilbert;
-    bool lattice = false; // sedov/noh: regular lattice instead of the (cached) glass
+    bool lattice = false; // glass cases: regular lattice instead of the (cached) glass
     std::vector<std::string> case_params; // --param KEY=VALUE: case parameters
 
     // Output and restart (issue 4).

@@ -9,11 +9,14 @@
 
 #include <mpi.h>
 
+#include "exasph/cases/initial_conditions.hpp"
+#include "exasph/config/config.hpp"
 #include "exasph/io/atomic_output.hpp"
+#include "exasph/io/output_state.hpp"
 #include "exasph/io/particle_io.hpp"
-#include "exasph/sim/run_attributes.hpp"
-#include "exasph/sim/simulation.hpp"
-#include "exasph/sim/snapshot.hpp"
+#include "exasph/io/restart_state.hpp"
+#include "exasph/io/run_attributes.hpp"
+#include "exasph/io/snapshot.hpp"
 #include "exasph/util/checksum.hpp"
 
 namespace exasph {
@@ -68,31 +71,31 @@ inline void prune_checkpoints(const std::string& dir, std::size_t keep) {
 // checksum (verified on restart). Atomic (temporary name, then rename); the previous checkpoint
 // is kept.
 template <class T>
-std::string write_checkpoint(const Simulation<T>& sim, const Config& cfg, const std::string& units,
+std::string write_checkpoint(const OutputState<T>& run, const Config& cfg, const std::string& units,
                              MPI_Comm comm) {
-    const auto rs = sim.restart_state();
+    const auto& rs = run.restart;
     const std::string path = numbered_path(cfg.out_dir, "checkpoint", rs.step, ".h5");
     int rank = 0;
     MPI_Comm_rank(comm, &rank);
     const std::uint64_t checksum =
-        checkpoint_checksum(sim.particles(), sim.n_owned(), rs, sim.dt0(), comm);
+        checkpoint_checksum(run.particles, run.n_owned, rs, run.dt0, comm);
     try {
         h5::File file = h5::File::create(temporary_name(path), comm);
         h5::Group root(file, "/", false);
         h5::write_attribute(root, "format", std::string(kCheckpointFormat));
         h5::write_attribute(root, "checksum", hex64(checksum));
-        write_run_attributes(root, cfg, sim.box(), sim.eos(), units);
+        write_run_attributes(root, cfg, run.box, run.eos, units);
         h5::write_attribute(root, "time", rs.time);
         h5::write_attribute(root, "step", std::int64_t(rs.step));
         h5::write_attribute(root, "dt_m1", rs.dt_m1);
-        h5::write_attribute(root, "dt0", sim.dt0());
+        h5::write_attribute(root, "dt0", run.dt0);
         h5::Group state(file, "/state", true);
-        const auto fields = sim.particles().fields(kState); // the optional ones the run carries
+        const auto fields = run.particles.fields(kState); // the optional ones the run carries
         const std::vector<Field> first(fields.begin(), fields.begin() + fields.size() / 2);
         const std::vector<Field> second(fields.begin() + fields.size() / 2, fields.end());
-        write_particle_fields(state, sim.particles(), sim.n_owned(), first, false, comm);
+        write_particle_fields(state, run.particles, run.n_owned, first, false, comm);
         checkpoint_test_stall(rs.step);
-        write_particle_fields(state, sim.particles(), sim.n_owned(), second, true, comm);
+        write_particle_fields(state, run.particles, run.n_owned, second, true, comm);
         h5::Group domain(file, "/domain", true);
         const auto& keys = rs.leaf_keys;
         h5::write_u64(domain, "leaf_keys", keys.data(), rank == 0 ? keys.size() : 0, 0,

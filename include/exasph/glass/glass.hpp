@@ -1,4 +1,6 @@
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +11,7 @@
 
 #include "exasph/cases/initial_h.hpp"
 #include "exasph/cases/unit_cube_points.hpp"
+#include "exasph/config/config.hpp"
 #include "exasph/io/atomic_output.hpp"
 #include "exasph/io/particle_io.hpp"
 #include "exasph/sim/simulation.hpp"
@@ -28,6 +31,34 @@ struct GlassResult {
     double scatter = 0;            // relative standard deviation of the density
     std::int64_t steps = 0;
 };
+
+// Damped SPH: after a step, every particle is stopped where it is and its internal energy
+// restored, so that the next step moves particles only along the pressure forces.
+template <class T>
+void reset_to_rest(ParticleSet<T>& ps, std::size_t n, T u) {
+    for (std::size_t i = 0; i < n; ++i) {
+        ps[Field::vx][i] = ps[Field::vy][i] = ps[Field::vz][i] = T(0);
+        ps[Field::x_m1][i] = ps[Field::x][i];
+        ps[Field::y_m1][i] = ps[Field::y][i];
+        ps[Field::z_m1][i] = ps[Field::z][i];
+        ps[Field::u][i] = u;
+        ps[Field::du_m1][i] = T(0);
+    }
+}
+
+// Relative standard deviation of the densities of the last step over all ranks of comm.
+template <class T>
+double density_scatter(const ParticleSet<T>& ps, std::size_t n, MPI_Comm comm) {
+    double s[3] = {0, 0, double(n)};
+    for (std::size_t i = 0; i < n; ++i) {
+        const double rho = ps.narrow(Field::rho)[i];
+        s[0] += rho;
+        s[1] += rho * rho;
+    }
+    MPI_Allreduce(MPI_IN_PLACE, s, 3, MPI_DOUBLE, MPI_SUM, comm);
+    const double mean = s[0] / s[2];
+    return std::sqrt(std::max(s[1] / s[2] - mean * mean, 0.0)) / mean;
+}
 
 // A periodic glass (SPEC 9): side^3 random points in the unit box relaxed with SPH pressure
 // forces of an isothermal gas, fully damped (every particle stopped after each step), until
@@ -71,13 +102,13 @@ inline GlassResult make_glass(const GlassParams& gp, MPI_Comm comm) {
     Config cfg;
     cfg.ng0 = gp.ng0;
     cfg.ngmax = int(gp.ng0 * 1.5);
-    cfg.on_sdc = "off"; // reset_to_rest changes the state between steps on purpose
+    cfg.on_sdc = SdcPolicy::off; // reset_to_rest changes the state between steps on purpose
     Simulation<double> sim(cfg, std::move(ic), comm);
     GlassResult res;
     for (res.steps = 1; res.steps <= gp.max_steps; ++res.steps) {
         sim.step();
-        sim.reset_to_rest(kU);
-        res.scatter = sim.density_scatter();
+        reset_to_rest(sim.particles_to_modify(), sim.n_owned(), kU);
+        res.scatter = density_scatter(sim.particles(), sim.n_owned(), comm);
         if (res.scatter < gp.tolerance) break;
     }
     if (res.scatter >= gp.tolerance)
@@ -108,59 +139,6 @@ inline void write_glass(const std::string& path, const GlassResult& g, double ng
         throw;
     }
     commit_output(path, comm);
-}
-
-// Where glass blocks are cached: $EXASPH_GLASS_DIR, else $XDG_CACHE_HOME/exasph, else
-// ~/.cache/exasph, else the working directory.
-inline std::filesystem::path glass_cache_dir() {
-    if (const char* d = std::getenv("EXASPH_GLASS_DIR")) return d;
-    if (const char* d = std::getenv("XDG_CACHE_HOME")) return std::filesystem::path(d) / "exasph";
-    if (const char* d = std::getenv("HOME")) return std::filesystem::path(d) / ".cache" / "exasph";
-    return ".";
-}
-
-// The glass block of block_side^3 points (positions in [0, 1)^3), from the cache or made now
-// (all ranks together) and cached.
-inline std::vector<double> glass_block(std::uint64_t block_side, double ng0, MPI_Comm comm,
-                                       std::ostream* log) {
-    const auto dir = glass_cache_dir();
-    const auto path =
-        (dir / ("glass_" + std::to_string(block_side) + "_ng" + std::to_string(int(ng0)) + ".h5"))
-            .string();
-    int rank = 0;
-    MPI_Comm_rank(comm, &rank);
-    int exists = rank == 0 ? std::filesystem::exists(path) : 0;
-    MPI_Bcast(&exists, 1, MPI_INT, 0, comm);
-    if (!exists) {
-        GlassParams gp;
-        gp.side = int(block_side);
-        gp.ng0 = ng0;
-        auto g = make_glass(gp, comm);
-        std::error_code ec;
-        if (rank == 0) std::filesystem::create_directories(dir, ec);
-        write_glass(path, g, ng0, comm);
-        if (log && rank == 0)
-            *log << "glass " << path << ": " << block_side << "^3 particles, density scatter "
-                 << g.scatter << " after " << g.steps << " relaxation steps (cached)\n";
-    }
-    // Every rank reads the whole (small) block.
-    h5::File file = h5::File::open_read(path, MPI_COMM_SELF);
-    h5::Group root(file, "/", false);
-    ParticleSet<double> ps;
-    read_particle_fields(root, ps, {Field::x, Field::y, Field::z}, {}, false, MPI_COMM_SELF);
-    if (ps.size() != block_side * block_side * block_side)
-        throw input_error(path + ": cached glass has " + std::to_string(ps.size()) +
-                              " particles, expected " + std::to_string(block_side) + "^3",
-                          true);
-    std::vector<double> out(3 * ps.size());
-    for (std::size_t i = 0; i < ps.size(); ++i) { // in id order, whichever ranks wrote the file
-        const std::uint64_t id = ps.id[i];
-        if (id >= ps.size()) throw input_error(path + ": glass ids must be 0 .. N-1", true);
-        out[3 * id] = ps[Field::x][i] + 0.5;
-        out[3 * id + 1] = ps[Field::y][i] + 0.5;
-        out[3 * id + 2] = ps[Field::z][i] + 0.5;
-    }
-    return out;
 }
 
 } // namespace exasph

@@ -1,0 +1,65 @@
+#pragma once
+#include <array>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "exasph/config/config.hpp"
+
+namespace exasph {
+
+// The names of a closed choice's values, as the command line, output files and the run header
+// spell them.
+template <class E>
+struct Choices;
+template <>
+struct Choices<CurveKind> {
+    static constexpr std::array<std::pair<std::string_view, CurveKind>, 2> values{
+        {{"hilbert", CurveKind::hilbert}, {"morton", CurveKind::morton}}};
+};
+template <>
+struct Choices<SdcPolicy> {
+    static constexpr std::array<std::pair<std::string_view, SdcPolicy>, 3> values{
+        {{"rollback", SdcPolicy::rollback}, {"abort", SdcPolicy::abort}, {"off", SdcPolicy::off}}};
+};
+template <>
+struct Choices<RollbackStore> {
+    static constexpr std::array<std::pair<std::string_view, RollbackStore>, 2> values{
+        {{"disk", RollbackStore::disk}, {"memory", RollbackStore::memory}}};
+};
+
+template <class E>
+std::string_view choice_name(E e) {
+    for (const auto& [name, value] : Choices<E>::values)
+        if (value == e) return name;
+    return "?";
+}
+
+template <class E>
+std::optional<E> choice_from_name(std::string_view name) {
+    for (const auto& [n, value] : Choices<E>::values)
+        if (n == name) return value;
+    return std::nullopt;
+}
+
+// "a, b or c": the names of a choice, for help and error messages.
+template <class E>
+std::string choice_list() {
+    std::string s;
+    const auto& v = Choices<E>::values;
+    for (std::size_t i = 0; i < v.size(); ++i)
+        s += std::string(i == 0 ? "" : (i + 1 == v.size() ? " or " : ", ")) +
+             std::string(v[i].first);
+    return s;
+}
+
+// Numbers in the run header and in messages: %g, which prints integers without a fraction.
+inline std::string format_number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+} // namespace exasph

@@ -1,0 +1,200 @@
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "exasph/config/choices.hpp"
+#include "exasph/config/config.hpp"
+#include "exasph/config/custom_values.hpp"
+
+namespace exasph {
+
+// What --restart does with a parameter.
+enum class OnRestart {
+    kept,    // part of the run's physics: stored in every output file ("param:KEY"), restored
+             // from the checkpoint, and refused if given with --restart
+    initial, // shapes only the initial conditions (the checkpoint holds the particles):
+             // refused if given with --restart
+    given,   // run control: a restart takes it from its own command line (or the default)
+};
+
+// Bounds a numeric parameter's value must lie in (checked by the command line).
+struct ValueRange {
+    enum Kind { any, closed, positive, nonnegative } kind = any;
+    double lo = 0, hi = 0;
+};
+inline constexpr ValueRange in_range(double lo, double hi) {
+    return {ValueRange::closed, lo, hi};
+}
+inline constexpr ValueRange kPositive{ValueRange::positive};
+inline constexpr ValueRange kNonNegative{ValueRange::nonnegative};
+
+// The member of Config a parameter sets. Lists (-f, --param) take repeated or comma-separated
+// values; enums take one of their names (config/choices.hpp); bools are flags.
+using ParamMember =
+    std::variant<double Config::*, int Config::*, std::int64_t Config::*, bool Config::*,
+                 std::string Config::*, std::vector<std::string> Config::*, CurveKind Config::*,
+                 SdcPolicy Config::*, RollbackStore Config::*, CustomValue>;
+
+// One run parameter, declared once: the command line, --help, the restart rule, the checkpoint
+// attributes and the run header are all generated from kParameters.
+struct Param {
+    const char* flags; // CLI11 option names: "-s,--steps"
+    const char* key;   // attribute "param:KEY" in output files, and the name in the run header
+    const char* help;
+    const char* unit; // "" for counts, flags and dimensionless numbers
+    OnRestart restart;
+    ParamMember member;
+    ValueRange range = {};
+    bool show_default = true; // false where the default is a sentinel ("not given")
+    char delimiter = '\0';    // lists: separator of several values in one argument
+};
+
+// clang-format off
+inline const std::array kParameters{
+    // Initial conditions
+    Param{"--init", "init", "Initial conditions: a test case or an HDF5 file *.h5 "
+          "(docs/file-format.md)", "", OnRestart::kept, &Config::init},
+    Param{"-n", "side", "Particles per axis (about n^3 particles)", "", OnRestart::kept,
+          &Config::side, in_range(2, 1000)},
+    Param{"--param", "case_params", "Case parameter KEY=VALUE (repeatable; the keys of each case "
+          "are listed below)", "", OnRestart::initial, &Config::case_params, {}, false},
+    Param{"--lattice", "lattice", "Glass cases (sedov, noh, evrard): start from a regular "
+          "lattice instead of a relaxed glass", "", OnRestart::initial, &Config::lattice},
+    // Physics
+    Param{"--ng0", "ng0", "Target number of neighbours", "", OnRestart::kept, &Config::ng0,
+          in_range(10, 1000)},
+    Param{"--ngmax", "ngmax", "Neighbour cap; exceeding it is reported (lists are never "
+          "truncated)", "", OnRestart::kept, &Config::ngmax, in_range(10, 4000)},
+    Param{"--kernel-exponent", "kernel_exponent", "Sinc kernel exponent n", "", OnRestart::kept,
+          &Config::kernel_exponent, in_range(3, 12)},
+    Param{"--courant", "courant", "Courant factor K_cour", "", OnRestart::kept, &Config::courant,
+          in_range(1e-6, 1)},
+    Param{"--alpha", "alpha", "Artificial viscosity alpha (the maximum with --av-switch)", "",
+          OnRestart::kept, &Config::alpha, in_range(0, 10)},
+    Param{"--av-switch", "av_switch", "Per-particle artificial viscosity (Morris & Monaghan): "
+          "alpha between --alpha-min and --alpha, raised by compression", "", OnRestart::kept,
+          &Config::av_switch},
+    Param{"--alpha-min", "alpha_min", "AV switch: smallest alpha", "", OnRestart::kept,
+          &Config::alpha_min, in_range(0, 10)},
+    Param{"--conductivity", "conductivity", "Artificial conductivity coefficient alpha_u "
+          "(Price 2008); 0 is off", "", OnRestart::kept, &Config::conductivity, in_range(0, 10)},
+    Param{"--av-limiter", "av_limiter", "Artificial viscosity from velocities reconstructed "
+          "linearly to each pair's midpoint with a van Leer slope limiter (Rosswog 2015): no "
+          "dissipation in smooth compression, full at shocks", "", OnRestart::kept,
+          &Config::av_limiter},
+    Param{"--volume-elements", "volume_elements", "Generalised volume elements X = (m/rho)^0.7 "
+          "instead of standard SPH volumes", "", OnRestart::kept, &Config::volume_elements},
+    Param{"--G", "G", "Gravitational constant: self-gravity on the tree (SPEC 8) for any case in "
+          "an open box; 0 turns it off (default: the case's, 1 for evrard, else off)",
+          "code units", OnRestart::kept, &Config::G, in_range(0, 1e300), false},
+    Param{"--theta", "theta", "Gravity: Barnes-Hut opening angle", "", OnRestart::kept,
+          &Config::theta, in_range(0.05, 0.95)},
+    Param{"--accel-eps", "accel_eps", "Gravity: time step at most sqrt(eps h / |a|) per particle",
+          "", OnRestart::kept, &Config::accel_eps, in_range(1e-6, 10)},
+    Param{"--gravity-leaf-size", "gravity_leaf_size", "Gravity tree leaf size: one interaction "
+          "list per leaf (particles)", "", OnRestart::kept, &Config::gravity_leaf_size,
+          in_range(1, 4096)},
+    // Decomposition
+    Param{"--global-bucket", "global_bucket", "Global tree leaf size: the unit of MPI load "
+          "balance (particles)", "", OnRestart::kept, &Config::global_bucket,
+          in_range(1, 1 << 20)},
+    Param{"--leaf-size", "leaf_size", "Local octree leaf size (particles)", "", OnRestart::kept,
+          &Config::leaf_size, in_range(1, 4096)},
+    Param{"--curve", "curve", "Space-filling curve: hilbert or morton", "", OnRestart::kept, &Config::curve},
+    // Run control
+    Param{"-s,--steps", "steps", "Stop after step N (counted from the start of the simulation, "
+          "across restarts)", "", OnRestart::given, &Config::steps, kNonNegative, false},
+    Param{"--t-end", "t_end", "Physical end time; with -s the run stops at whichever comes first "
+          "(default: the case's end time when -s is not given)", "code units", OnRestart::given,
+          &Config::t_end, kPositive, false},
+    Param{"--threads", "threads", "OpenMP threads (default: OMP_NUM_THREADS or all)", "",
+          OnRestart::given, &Config::threads, in_range(1, 4096), false},
+    Param{"--restart", "restart", "Continue the run saved in this checkpoint (any rank count); "
+          "the physics parameters come from the checkpoint", "", OnRestart::given,
+          &Config::restart_file, {}, false},
+    // Output
+    Param{"--out", "out", "Output directory (diagnostics.csv, snapshots, checkpoints)", "",
+          OnRestart::given, &Config::out_dir},
+    Param{"-w,--write-every", "write_every", "Snapshots: every N steps (an integer), or every T "
+          "of physical time (a number with a decimal point or exponent, written at the first "
+          "step at or after each multiple of T)", "", OnRestart::given, kWriteEvery, {}, false},
+    Param{"-f,--fields", "fields", "Snapshot fields, comma-separated (default: every snapshot "
+          "field the run carries); x,y,z are always written", "", OnRestart::given,
+          &Config::snapshot_fields, {}, false, ','},
+    Param{"--checkpoint-every", "checkpoint_every", "Write a checkpoint every N steps (also at "
+          "the end of the run), or 'auto': every sqrt(2 C M) s of wall time (Young/Daly) from the "
+          "measured checkpoint cost C and the run's MTBF M = --mtbf / nodes", "",
+          OnRestart::given, kCheckpointEvery, {}, false},
+    Param{"--mtbf", "mtbf", "With --checkpoint-every auto: mean time between failures of one "
+          "node", "hours", OnRestart::given, &Config::mtbf_hours, kPositive, false},
+    Param{"--checkpoint-minutes", "checkpoint_minutes", "Write a checkpoint every M minutes of "
+          "wall-clock time", "minutes", OnRestart::given, &Config::checkpoint_minutes, kPositive,
+          false},
+    // Silent data corruption
+    Param{"--on-sdc", "on_sdc", "Silent data corruption (state changed between steps, broken "
+          "invariants, conservation watchdog): rollback to the last verified state (see "
+          "--sdc-rollback-store), abort, or off (no checks)", "", OnRestart::given,
+          &Config::on_sdc},
+    Param{"--sdc-rollback-every", "sdc_rollback_every", "Steps between rollback points", "",
+          OnRestart::given, &Config::sdc_rollback_every, in_range(1, 1 << 30)},
+    Param{"--sdc-rollback-store", "sdc_rollback_store", "Where --on-sdc rollback keeps the "
+          "verified state: disk (one file per rank, ~112 B/particle, in --sdc-rollback-dir, "
+          "removed at the end) or memory (a copy of the state: ~112 B/particle more RAM, no I/O)",
+          "", OnRestart::given, &Config::sdc_rollback_store},
+    Param{"--sdc-rollback-dir", "sdc_rollback_dir", "Directory of the disk rollback point, e.g. "
+          "node-local scratch on a cluster (default: the --out directory)", "", OnRestart::given,
+          &Config::sdc_rollback_dir, {}, false},
+    Param{"--inject-fault", "inject_fault", "Testing: flip bit BIT of state field FIELD of "
+          "particle ID at the start of step STEP, once (STEP:FIELD:ID:BIT)", "",
+          OnRestart::given, &Config::inject_fault, {}, false},
+};
+// clang-format on
+
+// The parameter with this key (nullptr if none).
+inline const Param* find_parameter(std::string_view key) {
+    for (const auto& p : kParameters)
+        if (key == p.key) return &p;
+    return nullptr;
+}
+
+// The longest of a parameter's flags ("--steps" of "-s,--steps"): the name messages use.
+inline std::string long_flag(const Param& p) {
+    std::string_view f(p.flags);
+    const auto comma = f.rfind(',');
+    return std::string(comma == std::string_view::npos ? f : f.substr(comma + 1));
+}
+
+// A parameter's value as text (the run header): numbers as %g, flags as on/off, lists
+// comma-separated, enums by name.
+inline std::string format_value(const Param& p, const Config& cfg) {
+    return std::visit(
+        [&](const auto& m) -> std::string {
+            using M = std::decay_t<decltype(m)>;
+            if constexpr (std::is_same_v<M, CustomValue>) {
+                return m.format(cfg);
+            } else {
+                const auto& v = cfg.*m;
+                using V = std::decay_t<decltype(v)>;
+                if constexpr (std::is_same_v<V, bool>)
+                    return v ? "on" : "off";
+                else if constexpr (std::is_same_v<V, std::string>)
+                    return v;
+                else if constexpr (std::is_same_v<V, std::vector<std::string>>) {
+                    std::string s;
+                    for (const auto& e : v) s += (s.empty() ? "" : ",") + e;
+                    return s;
+                } else if constexpr (std::is_enum_v<V>)
+                    return std::string(choice_name(v));
+                else
+                    return format_number(double(v));
+            }
+        },
+        p.member);
+}
+
+} // namespace exasph

@@ -1,0 +1,103 @@
+#pragma once
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "exasph/build_info.hpp"
+#include "exasph/config/parameters.hpp"
+#include "exasph/io/h5_file.hpp"
+#include "exasph/sph/eos.hpp"
+#include "exasph/util/box.hpp"
+
+namespace exasph {
+
+inline const char* eos_name(EosKind k) {
+    return k == EosKind::tait ? "tait" : "ideal-gas";
+}
+
+// One parameter as the attribute "param:KEY": numbers as double, integers and flags as int64,
+// strings and enums by name.
+inline void write_parameter(const h5::Group& g, const Param& p, const Config& cfg) {
+    const std::string name = std::string("param:") + p.key;
+    std::visit(
+        [&](const auto& m) {
+            using M = std::decay_t<decltype(m)>;
+            if constexpr (std::is_same_v<M, CustomValue>) {
+                h5::write_attribute(g, name, m.format(cfg));
+            } else {
+                using V = std::decay_t<decltype(cfg.*m)>;
+                if constexpr (std::is_same_v<V, double>)
+                    h5::write_attribute(g, name, cfg.*m);
+                else if constexpr (std::is_integral_v<V>)
+                    h5::write_attribute(g, name, std::int64_t(cfg.*m));
+                else
+                    h5::write_attribute(g, name, format_value(p, cfg));
+            }
+        },
+        p.member);
+}
+
+// Reads "param:KEY" back into cfg; an older file without it leaves the default.
+inline void read_parameter(const h5::Group& g, const Param& p, Config& cfg) {
+    const std::string name = std::string("param:") + p.key;
+    if (!h5::has_attribute(g, name)) return;
+    auto number = [&] {
+        auto v = h5::read_attribute_doubles(g, name);
+        if (v.size() != 1)
+            throw input_error(g.file().path() + ": attribute " + name + " malformed");
+        return v[0];
+    };
+    std::visit(
+        [&](const auto& m) {
+            using M = std::decay_t<decltype(m)>;
+            if constexpr (std::is_same_v<M, CustomValue>) {
+                m.parse(h5::read_attribute_string(g, name), cfg);
+            } else {
+                auto& v = cfg.*m;
+                using V = std::decay_t<decltype(v)>;
+                if constexpr (std::is_same_v<V, bool>)
+                    v = number() != 0;
+                else if constexpr (std::is_arithmetic_v<V>)
+                    v = V(number());
+                else if constexpr (std::is_same_v<V, std::string>)
+                    v = h5::read_attribute_string(g, name);
+                else if constexpr (std::is_enum_v<V>) {
+                    const auto text = h5::read_attribute_string(g, name);
+                    const auto e = choice_from_name<V>(text);
+                    if (!e) throw input_error(g.file().path() + ": " + name + " '" + text + "'?");
+                    v = *e;
+                }
+            }
+        },
+        p.member);
+}
+
+// Attributes every output file carries on its root group: code version, units, the box and the
+// EOS (so that a snapshot can seed a new run with --init) and the run's physics parameters
+// (those the restart rule keeps, OnRestart::kept), as "param:KEY".
+template <class T>
+void write_run_attributes(const h5::Group& g, const Config& cfg, const Box<T>& box,
+                          const EosParams& eos, const std::string& units) {
+    h5::write_attribute(g, "code_version", std::string("exasph ") + kVersion);
+    h5::write_attribute(g, "units", units);
+    h5::write_attribute(g, "box_lo", std::vector<double>{box.lo[0], box.lo[1], box.lo[2]});
+    h5::write_attribute(g, "box_hi", std::vector<double>{box.hi[0], box.hi[1], box.hi[2]});
+    h5::write_attribute(
+        g, "periodic",
+        std::vector<std::int64_t>{box.periodic[0], box.periodic[1], box.periodic[2]});
+    h5::write_attribute(g, "eos", std::string(eos_name(eos.kind)));
+    h5::write_attribute(g, "gamma", eos.gamma);
+    h5::write_attribute(g, "sound_speed", eos.c0);
+    for (const auto& p : kParameters)
+        if (p.restart == OnRestart::kept) write_parameter(g, p, cfg);
+}
+
+// Reads back the physics parameters written by write_run_attributes (restart). A file from
+// before self-gravity (no param:G) ran without it.
+inline void read_run_parameters(const h5::Group& g, Config& cfg) {
+    if (!h5::has_attribute(g, "param:G")) cfg.G = 0.0;
+    for (const auto& p : kParameters)
+        if (p.restart == OnRestart::kept) read_parameter(g, p, cfg);
+}
+
+} // namespace exasph

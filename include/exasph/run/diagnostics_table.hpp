@@ -1,0 +1,37 @@
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "exasph/io/csv_table.hpp"
+#include "exasph/sim/diagnostics.hpp"
+#include "exasph/sim/phases.hpp"
+
+namespace exasph {
+
+// The columns of diagnostics.csv: the SPEC 10 quantities of a step, then the seconds of each
+// phase (t_NAME).
+inline std::vector<CsvColumn> diagnostics_columns() {
+    std::vector<CsvColumn> c{
+        {"step", CsvFormat::integer}, {"time"}, {"dt"}, {"n", CsvFormat::integer}};
+    for (const char* name : {"ekin", "eint", "epot", "etot", "px", "py", "pz", "lx", "ly", "lz",
+                             "nc_min", "nc_mean", "nc_max", "rho_max", "l1_rho"})
+        c.push_back({name});
+    for (auto name : kPhaseNames) c.push_back({"t_" + std::string(name), CsvFormat::timing});
+    return c;
+}
+
+inline std::vector<double> diagnostics_row(const Diagnostics& d,
+                                           const std::array<double, kNumPhases>& phases) {
+    // clang-format off
+    std::vector<double> row{double(d.step), d.time, d.dt, double(d.n),
+                            d.ekin, d.eint, d.epot, d.etot,
+                            d.momentum[0], d.momentum[1], d.momentum[2],
+                            d.angular_momentum[0], d.angular_momentum[1], d.angular_momentum[2],
+                            d.nc_min, d.nc_mean, d.nc_max, d.rho_max, d.l1_rho};
+    // clang-format on
+    row.insert(row.end(), phases.begin(), phases.end());
+    return row;
+}
+
+} // namespace exasph

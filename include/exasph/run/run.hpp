@@ -1,0 +1,224 @@
+#pragma once
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <ostream>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include <mpi.h>
+
+#include "exasph/config/validate.hpp"
+#include "exasph/io/checkpoint.hpp"
+#include "exasph/io/csv_table.hpp"
+#include "exasph/io/snapshot.hpp"
+#include "exasph/run/diagnostics_table.hpp"
+#include "exasph/run/output_schedule.hpp"
+#include "exasph/run/run_report.hpp"
+#include "exasph/run/setup.hpp"
+#include "exasph/util/memory.hpp"
+
+namespace exasph {
+
+// Opens diagnostics.csv on rank 0 (appending when a restart continues in the same directory);
+// every rank learns whether that worked (start-up broadcast).
+inline std::unique_ptr<CsvTable> open_diagnostics(const Config& cfg, bool root, bool append) {
+    std::unique_ptr<CsvTable> csv;
+    std::string err;
+    if (root) {
+        std::filesystem::path dir(cfg.out_dir);
+        std::error_code ec;
+        std::filesystem::create_directories(dir, ec);
+        if (ec)
+            err = "--out: cannot create directory '" + cfg.out_dir + "': " + ec.message();
+        else {
+            try {
+                csv = std::make_unique<CsvTable>(dir / "diagnostics.csv", append,
+                                                 diagnostics_columns());
+            } catch (const Error& e) {
+                err = e.what();
+            }
+        }
+    }
+    int ok = err.empty();
+    MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (!ok) throw Error(root ? err : "cannot write the output directory", 3, true);
+    return csv;
+}
+
+namespace detail {
+inline volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" inline void on_stop_signal(int signum) {
+    g_stop_signal = signum;
+}
+} // namespace detail
+
+// A whole simulation as configured, on all ranks of MPI_COMM_WORLD: setup (constructor), the
+// loop of steps with its outputs (loop()), the summary. Rank 0 prints the header, one row per
+// step and the summary.
+class RunDriver {
+  public:
+    RunDriver(Config cfg, std::ostream& out) : cfg_(std::move(cfg)), out_(out) {
+        validate_config(cfg_);
+#ifdef _OPENMP
+        if (cfg_.threads > 0) omp_set_num_threads(cfg_.threads);
+#endif
+        MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+        MPI_Comm_size(MPI_COMM_WORLD, &nranks_);
+        auto start = start_run(cfg_, MPI_COMM_WORLD, &std::cout);
+        sim_ = std::move(start.sim);
+        units_ = start.units;
+        cfg_.G = sim_->gravitational_constant(); // outputs record the G the run uses
+        fields_ = run_snapshot_fields(cfg_, sim_->particles());
+        t_end_ = cfg_.t_end > 0 ? cfg_.t_end : (cfg_.steps < 0 ? start.case_t_end : -1.0);
+        if (t_end_ <= 0 && cfg_.steps < 0)
+            throw input_error("no end: give -s STEPS or --t-end T (the initial conditions set "
+                              "none)",
+                              true);
+        csv_ = open_diagnostics(cfg_, root(), !cfg_.restart_file.empty());
+        if (root()) print_header(out_, cfg_, *sim_, nranks_, t_end_);
+        if (t_end_ > 0) sim_->set_end_time(t_end_);
+        schedule_ = std::make_unique<OutputSchedule>(cfg_, sim_->time(), auto_checkpoint_mtbf());
+    }
+
+    // Steps until the end, a signal or an error (thrown as Error). Returns the exit code.
+    int loop() {
+        detail::g_stop_signal = 0;
+        std::signal(SIGINT, detail::on_stop_signal);
+        std::signal(SIGTERM, detail::on_stop_signal);
+        wall0_ = wall_seconds();
+        step0_ = sim_->step_count();
+        while (!done()) {
+            if (detail::g_stop_signal) sim_->raise_flag(kStopRequested);
+            if (root() && schedule_->clock_due(wall_seconds()))
+                sim_->raise_flag(kCheckpointByClock);
+            const double w0 = wall_seconds();
+            sim_->step();
+            if (sim_->recovered()) {
+                report_recovery();
+                continue;
+            }
+            check_step();
+            if (root()) {
+                const double mean = (wall_seconds() - wall0_) / double(sim_->step_count() - step0_);
+                print_step(out_, *sim_, wall_seconds() - w0, mean, t_end_);
+                csv_->write(diagnostics_row(sim_->diagnostics(), sim_->phase_times()));
+            }
+            if (schedule_->snapshot_due(sim_->step_count(), sim_->time())) snapshot();
+            const bool stop = sim_->flag(kStopRequested);
+            if (schedule_->checkpoint_due(sim_->step_count()) || sim_->flag(kCheckpointByClock) ||
+                stop)
+                checkpoint();
+            if (stop) {
+                if (root()) out_ << "stopped by a signal after step " << sim_->step_count() << "\n";
+                return 128 + (detail::g_stop_signal ? int(detail::g_stop_signal) : SIGTERM);
+            }
+        }
+        if (schedule_->checkpointing() && last_checkpoint_ != sim_->step_count()) checkpoint();
+        return 0;
+    }
+
+    // Rank 0 prints the summary (peak memory summed over the ranks: an output-time collective).
+    void summary() {
+        const double wall = wall_seconds() - wall0_ - output_wall_;
+        double rss = double(peak_rss_bytes());
+        MPI_Allreduce(MPI_IN_PLACE, &rss, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+        if (root())
+            print_summary(out_, *sim_, double(sim_->step_count() - step0_), wall, output_wall_,
+                          nranks_, rss);
+    }
+
+  private:
+    bool root() const {
+        return rank_ == 0;
+    }
+
+    bool done() const {
+        if (cfg_.steps >= 0 && sim_->step_count() >= cfg_.steps) return true;
+        return t_end_ > 0 && sim_->time() >= t_end_ * (1 - 1e-12);
+    }
+
+    // --checkpoint-every auto: the run's MTBF from the nodes' (0 otherwise).
+    double auto_checkpoint_mtbf() {
+        if (!cfg_.checkpoint_auto) return 0;
+        const int nodes = count_nodes(MPI_COMM_WORLD);
+        mtbf_ = run_mtbf_seconds(cfg_.mtbf_hours, nodes);
+        if (root())
+            out_ << strprintf("checkpoints: auto (Young/Daly sqrt(2 C M)), MTBF %g h per node x "
+                              "%d node(s): M = %.1f s\n",
+                              cfg_.mtbf_hours, nodes, mtbf_);
+        return mtbf_;
+    }
+
+    void report_recovery() {
+        if (!sim_->sdc_detail().empty())
+            std::cerr << "exasph: rank " << rank_ << ": " << sim_->sdc_detail() << "\n";
+        if (root()) out_ << "silent data corruption: " << sim_->sdc_summary() << "\n";
+    }
+
+    // A step whose energy is not finite ends the run (naming the particle when a state field
+    // went bad); a list above ngmax is reported once.
+    void check_step() {
+        const auto& d = sim_->diagnostics();
+        if (!std::isfinite(d.etot)) {
+            sim_->particles().validate();
+            throw Error("total energy is not finite at step " + std::to_string(d.step), 1, true);
+        }
+        if (!warned_ngmax_ && sim_->max_list_length() > std::uint32_t(cfg_.ngmax)) {
+            std::cerr << "warning: rank " << rank_ << ": a particle has " << sim_->max_list_length()
+                      << " neighbours, more than ngmax = " << cfg_.ngmax
+                      << "; lists were enlarged (no truncation)\n";
+            warned_ngmax_ = true;
+        }
+    }
+
+    void snapshot() {
+        const double w = wall_seconds();
+        const std::string path =
+            write_snapshot(sim_->output_state(), cfg_, units_, fields_, MPI_COMM_WORLD);
+        output_wall_ += wall_seconds() - w;
+        if (root()) out_ << strprintf("snapshot %s (%.3f s)\n", path.c_str(), wall_seconds() - w);
+    }
+
+    void checkpoint() {
+        const double w = wall_seconds();
+        const std::string path =
+            write_checkpoint(sim_->output_state(), cfg_, units_, MPI_COMM_WORLD);
+        const double cost = wall_seconds() - w;
+        output_wall_ += cost;
+        const double interval = schedule_->checkpoint_written(wall_seconds(), cost);
+        last_checkpoint_ = sim_->step_count();
+        if (root()) out_ << strprintf("checkpoint %s (%.3f s)\n", path.c_str(), cost);
+        if (root() && interval > 0)
+            out_ << strprintf("checkpoint interval: C = %.3f s, M = %.1f s -> every %.1f s of "
+                              "wall time\n",
+                              cost, mtbf_, interval);
+    }
+
+    Config cfg_;
+    std::ostream& out_;
+    int rank_ = 0, nranks_ = 1;
+    std::unique_ptr<Simulation<double>> sim_;
+    std::string units_;
+    std::vector<Field> fields_;
+    double t_end_ = -1, mtbf_ = 0, wall0_ = 0, output_wall_ = 0;
+    std::unique_ptr<CsvTable> csv_;
+    std::unique_ptr<OutputSchedule> schedule_;
+    std::int64_t step0_ = 0, last_checkpoint_ = -1;
+    bool warned_ngmax_ = false;
+};
+
+// Runs a whole simulation; returns the exit code (errors are thrown as Error).
+inline int run(Config cfg, std::ostream& out) {
+    RunDriver driver(std::move(cfg), out);
+    const int code = driver.loop();
+    if (code == 0) driver.summary();
+    return code;
+}
+
+} // namespace exasph

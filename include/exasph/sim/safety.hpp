@@ -1,0 +1,134 @@
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+
+#include "exasph/config/config.hpp"
+#include "exasph/io/restart_state.hpp"
+#include "exasph/sim/diagnostics.hpp"
+#include "exasph/sim/fault.hpp"
+#include "exasph/sim/state_guard.hpp"
+#include "exasph/sim/state_store.hpp"
+#include "exasph/sim/watchdog.hpp"
+
+namespace exasph {
+
+// Where a rollback returns to, besides the particles.
+template <class T>
+struct RunPoint {
+    RestartState rs;
+    Box<T> box;
+    Diagnostics diag;
+};
+
+// The silent-data-corruption defences of issue 8 as one component around the step: the test
+// fault injection, the state check at the start of a step, the rollback point, the conservation
+// watchdog at its end, and the rollback itself. The step asks it at three places (before,
+// cleared, after); everything else about corruption lives here.
+template <class T>
+class SafetyNet {
+  public:
+    SafetyNet(const Config& cfg, int rank)
+        : policy_(cfg.on_sdc), every_(std::max(cfg.sdc_rollback_every, 1)), rank_(rank) {
+        if (cfg.sdc_rollback_store == RollbackStore::disk) {
+            const std::string dir =
+                cfg.sdc_rollback_dir.empty() ? cfg.out_dir : cfg.sdc_rollback_dir;
+            // the process id keeps runs that share a scratch directory apart
+            const std::string name = ".sdc-rollback-rank" + std::to_string(rank) + "-" +
+                                     std::to_string(::getpid()) + ".bin";
+            point_state_.keep_on_disk((std::filesystem::path(dir) / name).string());
+        }
+        if (!cfg.inject_fault.empty()) fault_ = parse_fault(cfg.inject_fault);
+    }
+
+    bool on() const { return policy_ != SdcPolicy::off; }
+
+    // Start of step `step`: injects the test fault (once: a rollback replays the step cleanly),
+    // then checks the state at rest. Returns whether this rank found it corrupted.
+    bool corrupted_before(ParticleSet<T>& ps, std::size_t n, const Box<T>& box, std::int64_t step,
+                          double dt_m1, bool u_positive) {
+        if (fault_.step == step && !fault_done_) {
+            inject_fault(ps, n, fault_); // on the rank that owns the particle
+            fault_done_ = true;
+        }
+        if (!on()) return false;
+        detail_ = guard_.check(ps, n, box, dt_m1, press_ok_, u_positive);
+        return !detail_.empty();
+    }
+
+    // Every sdc_rollback_every steps, once every rank has found the state clean, it becomes the
+    // rollback point (keep_point), replacing the previous one in place (one copy of the state,
+    // not two).
+    bool point_due(std::int64_t step) const {
+        return policy_ == SdcPolicy::rollback && step % every_ == 0;
+    }
+    void keep_point(const ParticleSet<T>& ps, std::size_t n, const RunPoint<T>& where) {
+        point_state_.save(ps, n);
+        point_ = where;
+        have_point_ = true;
+    }
+
+    // End of a step: the conservation watchdog, then the seal of the new state. Returns false
+    // when the watchdog fired (on every rank: the diagnostics are global).
+    bool conserved_after(const ParticleSet<T>& ps, std::size_t n, const Diagnostics& before,
+                         const Diagnostics& now, double mass0, bool check_momentum) {
+        if (!on()) return true;
+        const std::string why = conservation_violation(before, now, mass0, check_momentum);
+        if (!why.empty()) {
+            if (rank_ == 0) detail_ = "watchdog: " + why;
+            return false;
+        }
+        seal(ps, n);
+        press_ok_ = true;
+        return true;
+    }
+
+    void seal(const ParticleSet<T>& ps, std::size_t n) {
+        if (on()) guard_.seal(ps, n);
+    }
+
+    // All ranks, after a detection by `where` in or before step `step` of a run now at step
+    // `current`: restores the rollback point's particles into ps and returns the rest of it, or
+    // throws (abort, or nothing to roll back to).
+    const RunPoint<T>& roll_back(ParticleSet<T>& ps, const std::string& where, std::int64_t step,
+                                 std::int64_t current) {
+        ++recoveries_;
+        detection_step_ = step;
+        const bool can = policy_ == SdcPolicy::rollback && have_point_ && recoveries_ <= 100 &&
+                         point_.rs.step < current + 1;
+        const std::string detail = detail_.empty() ? "found on another rank" : detail_;
+        if (!can)
+            throw Error("silent data corruption detected by " + where + " (" + detail + "); " +
+                            (policy_ == SdcPolicy::abort ? "aborting (--on-sdc abort)"
+                                                         : "no verified state to roll back to"),
+                        1, true);
+        summary_ = "corruption detected by " + where + " (" + detail + "): rolled back to step " +
+                   std::to_string(point_.rs.step);
+        point_state_.restore(ps);
+        press_ok_ = false; // accelerations are not part of the rollback point
+        return point_;
+    }
+
+    std::int64_t recoveries() const { return recoveries_; }
+    // This rank's description of the last detection ("" if another rank detected it).
+    const std::string& detail() const { return detail_; }
+    const std::string& summary() const { return summary_; }
+    std::int64_t detection_step() const { return detection_step_; }
+
+  private:
+    SdcPolicy policy_;
+    std::int64_t every_;
+    int rank_;
+    StateGuard<T> guard_;
+    StateStore<T> point_state_; // in memory, or on disk (--sdc-rollback-store disk)
+    RunPoint<T> point_;
+    bool have_point_ = false;
+    FaultSpec fault_;
+    bool fault_done_ = false, press_ok_ = false;
+    std::int64_t recoveries_ = 0, detection_step_ = -1;
+    std::string detail_, summary_;
+};
+
+} // namespace exasph

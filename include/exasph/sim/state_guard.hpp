@@ -1,0 +1,130 @@
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "exasph/particles/particle_set.hpp"
+#include "exasph/sim/state_hash.hpp"
+#include "exasph/util/box.hpp"
+
+namespace exasph {
+
+// Guards the owned particles' state between steps: seal() records a hash per particle at the end
+// of a step, check() (start of the next step, same order) finds any bit that changed in between,
+// and the physics invariants below catch corruption that happened before the seal.
+template <class T>
+class StateGuard {
+  public:
+    void seal(const ParticleSet<T>& ps, std::size_t n) {
+        fields_ = ps.fields(kState);
+        hashes_.resize(n);
+        over_hash_blocks(ps, n, [&](std::size_t first, std::size_t count, const std::uint32_t* h) {
+            std::copy_n(h, count, hashes_.begin() + std::ptrdiff_t(first));
+            return n;
+        });
+        sealed_ = true;
+    }
+
+    // Empty when the state is consistent, else what is wrong (the first particle found).
+    // `dt` and the accelerations are those of the last step (press_ok: they are valid);
+    // `u_positive`: u >= 0 is an invariant (ideal gas, not the Tait EOS that ignores u).
+    std::string check(const ParticleSet<T>& ps, std::size_t n, const Box<T>& box, double dt,
+                      bool press_ok, bool u_positive) const {
+        const auto nn = std::int64_t(n);
+        std::int64_t bad_hash = nn, bad_physics = nn;
+        if (sealed_ && hashes_.size() == n)
+            bad_hash = std::int64_t(over_hash_blocks(
+                ps, n, [&](std::size_t first, std::size_t count, const std::uint32_t* h) {
+                    for (std::size_t k = 0; k < count; ++k)
+                        if (h[k] != hashes_[first + k]) return first + k;
+                    return n;
+                }));
+        std::string why;
+#pragma omp parallel for schedule(static) reduction(min : bad_physics)
+        for (std::int64_t i = 0; i < nn; ++i)
+            if (!physics_violation(ps, i, box, dt, press_ok, u_positive).empty() && i < bad_physics)
+                bad_physics = i;
+        if (bad_hash < nn)
+            why = "particle id " + std::to_string(ps.id[bad_hash]) +
+                  ": state changed between steps (hash mismatch)";
+        if (bad_physics < nn)
+            why += std::string(why.empty() ? "" : "; ") + "particle id " +
+                   std::to_string(ps.id[bad_physics]) + ": " +
+                   physics_violation(ps, bad_physics, box, dt, press_ok, u_positive);
+        return why;
+    }
+
+    // The first invariant particle i breaks (for the report), or "" if none.
+    static std::string physics_violation(const ParticleSet<T>& ps, std::size_t i, const Box<T>& box,
+                                         double dt, bool press_ok, bool u_positive) {
+        for (const auto& info : kFieldTable)
+            if ((info.roles & kState) && ps.enabled(info.field) &&
+                !std::isfinite(ps[info.field][i]))
+                return std::string(info.name) + " is not finite";
+        if (!(ps[Field::m][i] > T(0))) return "m is not positive";
+        if (!(ps[Field::h][i] > T(0))) return "h is not positive";
+        if (u_positive && ps[Field::u][i] < T(0)) return "u is negative";
+        const Field pos[3] = {Field::x, Field::y, Field::z};
+        for (int d = 0; d < 3; ++d) {
+            const T x = ps[pos[d]][i];
+            if (x < box.lo[d] || x > box.hi[d]) return "position outside the box";
+        }
+        if (press_ok && !press_consistent(ps, i, dt)) return "x, x_m1, v, a disagree (Press)";
+        return "";
+    }
+
+  private:
+    // After a Press update (sph/integrator.hpp), x - x_m1 = dt (v - a dt / 2) up to round-off
+    // in each axis (a periodic wrap moves x and x_m1 together).
+    static bool press_consistent(const ParticleSet<T>& ps, std::size_t i, double dt) {
+        constexpr double eps = std::numeric_limits<T>::epsilon();
+        const Field pos[3] = {Field::x, Field::y, Field::z};
+        const Field prev[3] = {Field::x_m1, Field::y_m1, Field::z_m1};
+        const Field vel[3] = {Field::vx, Field::vy, Field::vz};
+        const Field acc[3] = {Field::ax, Field::ay, Field::az};
+        for (int d = 0; d < 3; ++d) {
+            const double x = ps[pos[d]][i], xm = ps[prev[d]][i], v = ps[vel[d]][i],
+                         a = ps[acc[d]][i];
+            const double residual = std::abs((x - xm) - dt * (v - 0.5 * a * dt));
+            const double allowed =
+                16 * eps * (std::abs(x) + std::abs(xm) + dt * (std::abs(v) + std::abs(a) * dt));
+            if (!(residual <= allowed)) return false;
+        }
+        return true;
+    }
+
+    std::vector<Field> fields_;
+    // 32 bits per particle (4 B/particle of memory): a changed state goes unnoticed with
+    // probability 2^-32 per corrupted particle. particle_state_hash folded to 32 bits, for
+    // particles [first, first + count), count <= kHashBlock.
+    void sealed_hashes(const ParticleSet<T>& ps, std::size_t first, std::size_t count,
+                       std::uint32_t* out) const {
+        std::uint64_t h[kHashBlock];
+        state_hash_block(ps, fields_, first, count, h);
+        for (std::size_t k = 0; k < count; ++k) out[k] = std::uint32_t(h[k] ^ (h[k] >> 32));
+    }
+    // Runs body(first, count, hashes) on the sealed hashes of each block of the first n
+    // particles, in parallel; returns the least value the body returned (n for none).
+    template <class Body>
+    std::size_t over_hash_blocks(const ParticleSet<T>& ps, std::size_t n, Body body) const {
+        const auto blocks = std::int64_t((n + kHashBlock - 1) / kHashBlock);
+        std::size_t least = n;
+#pragma omp parallel for schedule(static) reduction(min : least)
+        for (std::int64_t b = 0; b < blocks; ++b) {
+            std::uint32_t h[kHashBlock];
+            const std::size_t first = std::size_t(b) * kHashBlock;
+            const std::size_t count = std::min(kHashBlock, n - first);
+            sealed_hashes(ps, first, count, h);
+            least = std::min(least, std::size_t(body(first, count, h)));
+        }
+        return least;
+    }
+
+    std::vector<std::uint32_t> hashes_;
+    bool sealed_ = false;
+};
+
+} // namespace exasph

@@ -1,0 +1,76 @@
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
+#include "exasph/tree/neighbour_lists.hpp"
+
+// Launchers: how a per-particle kernel runs over the particles. A kernel is a functor with an
+// EXASPH_HD call operator, k(i) for particle-wise kernels or k(i, neighbours of i) for
+// neighbour passes, that may return a number; a launcher calls it for every particle and, where
+// asked, returns the minimum of the results. The passes (sph/passes.hpp) take the launcher as a
+// template parameter, so that the same kernels run on another backend by adding a launcher
+// here, not by touching the kernels.
+namespace exasph {
+
+enum class Backend { openmp };
+
+// OpenMP threads of this rank: static schedule over particles, dynamic over leaf groups.
+struct OmpLauncher {
+    static constexpr Backend kBackend = Backend::openmp;
+
+    template <class Kernel>
+    static void for_each(std::size_t n, const Kernel& k) {
+        const auto nn = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < nn; ++i) k(std::uint32_t(i));
+    }
+
+    template <class Kernel>
+    static double reduce_min(std::size_t n, const Kernel& k) {
+        const auto nn = static_cast<std::int64_t>(n);
+        double least = std::numeric_limits<double>::infinity();
+#pragma omp parallel for schedule(static) reduction(min : least)
+        for (std::int64_t i = 0; i < nn; ++i) least = std::min(least, double(k(std::uint32_t(i))));
+        return least;
+    }
+
+    // Every particle with a list, in parallel over the leaf groups (each thread expands its
+    // groups' lists into its own buffer). Returns the minimum of the kernel's results if it
+    // returns a number (else +infinity).
+    template <class T, class Kernel>
+    static double for_each_neighbourhood(const NeighbourLists<T>& nl, const Kernel& k) {
+        constexpr bool kReduces =
+            !std::is_void_v<std::invoke_result_t<const Kernel&, std::uint32_t, NeighbourSpan>>;
+        const auto groups = static_cast<std::int64_t>(nl.num_groups());
+        double least = std::numeric_limits<double>::infinity();
+#pragma omp parallel reduction(min : least)
+        {
+            typename NeighbourLists<T>::Decoder dec(nl);
+#pragma omp for schedule(dynamic, 8)
+            for (std::int64_t g = 0; g < groups; ++g) {
+                dec.start(std::size_t(g));
+                const auto end = nl.group_end(std::size_t(g));
+                for (std::uint32_t i = nl.group_begin(std::size_t(g)); i < end; ++i) {
+                    if constexpr (kReduces)
+                        least = std::min(least, double(k(i, dec.next())));
+                    else
+                        k(i, dec.next());
+                }
+            }
+        }
+        return least;
+    }
+};
+
+// The launcher of a backend, chosen once at compile time.
+template <Backend B>
+struct LauncherFor;
+template <>
+struct LauncherFor<Backend::openmp> {
+    using type = OmpLauncher;
+};
+using DefaultLauncher = LauncherFor<Backend::openmp>::type;
+
+} // namespace exasph

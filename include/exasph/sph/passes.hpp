@@ -1,0 +1,99 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <type_traits>
+
+#include "exasph/particles/particle_set.hpp"
+#include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/density_kern.hpp"
+#include "exasph/sph/iad_kern.hpp"
+#include "exasph/sph/launch.hpp"
+#include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/sph/update_kern.hpp"
+#include "exasph/tree/neighbour_lists.hpp"
+#include "exasph/util/error.hpp"
+
+// The SPH passes of a step: each builds its kernel (a functor from sph/*_kern.hpp) over a view of
+// the particles and hands it to the launcher L (sph/launch.hpp). Neighbour passes run over the
+// particles that have lists (the owned ones, [0, nl.size())).
+namespace exasph {
+
+// SPEC 3 and 4: density, EOS and the pressure-force coefficient (DensityEosKernel).
+template <class L = DefaultLauncher, class T>
+void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+                     const KernelView<T>& k, const EosParams& eos = {}, bool capture_rho0 = false) {
+    L::for_each_neighbourhood(nl, DensityEosKernel<T>{make_view(ps), box, k, eos, capture_rho0});
+}
+
+// SPEC 5. Throws Error naming a particle whose tau is singular. With `with_gradient`, also
+// stores the velocity gradient for the reconstructed artificial viscosity.
+template <class L = DefaultLauncher, class T>
+void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+                 const KernelView<T>& k, bool with_gradient = false) {
+    if (with_gradient) ps.enable(kHaloGrad);
+    const double first =
+        L::for_each_neighbourhood(nl, IadKernel<T>{make_view(ps), box, k, with_gradient});
+    if (first < double(nl.size())) {
+        const auto i = std::uint32_t(first);
+        throw Error("IAD matrix tau is singular for particle id " + std::to_string(ps.id[i]) +
+                    " (" + std::to_string(nl.list(i).size()) +
+                    " neighbours): too few or coplanar neighbours");
+    }
+}
+
+// SPEC 6; returns the Courant time step of SPEC 7 (min over the particles). One instantiation of
+// the pair loop per combination of options, chosen once per pass.
+template <class L = DefaultLauncher, class T>
+double compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+                               const KernelView<T>& k, const Dissipation<T>& diss = {},
+                               T courant = T(0.2)) {
+    const auto p = make_view(ps);
+    auto pass = [&](auto extras, auto alpha, auto ve) {
+        return L::for_each_neighbourhood(
+            nl, MomentumEnergyKernel<T, extras(), alpha(), ve()>{p, box, k, diss, courant});
+    };
+    auto with_ve = [&](auto extras, auto alpha) {
+        return p[Field::kx] ? pass(extras, alpha, std::true_type{})
+                            : pass(extras, alpha, std::false_type{});
+    };
+    auto with_alpha = [&](auto extras) {
+        return p[Field::alpha] ? with_ve(extras, std::true_type{})
+                               : with_ve(extras, std::false_type{});
+    };
+    return diss.reconstruct || diss.alpha_u > T(0) ? with_alpha(std::true_type{})
+                                                   : with_alpha(std::false_type{});
+}
+
+// SPEC 7: positions, velocities and u of the first n particles (StateUpdateKernel).
+template <class L = DefaultLauncher, class T>
+void update_state(ParticleSet<T>& ps, std::size_t n, const Box<T>& box, double dt, double dt_m1) {
+    L::for_each(n, StateUpdateKernel<T>{make_view(ps), box, T(dt), T(dt_m1)});
+}
+
+// SPEC 2 (SmoothingLengthKernel).
+template <class L = DefaultLauncher, class T>
+void update_smoothing_lengths(ParticleSet<T>& ps, std::size_t n, double ng0) {
+    L::for_each(n, SmoothingLengthKernel<T>{make_view(ps), T(ng0)});
+}
+
+// The AV switch (ViscosityKernel), alpha between alpha_min and alpha_max.
+template <class L = DefaultLauncher, class T>
+void update_viscosity(ParticleSet<T>& ps, std::size_t n, double dt, double alpha_min,
+                      double alpha_max) {
+    L::for_each(
+        n, ViscosityKernel<T>{make_view(ps), T(dt), T(alpha_min), T(alpha_max), T(kAlphaDecay)});
+}
+
+// Volume elements for the next step (VolumeWeightKernel).
+template <class L = DefaultLauncher, class T>
+void update_volume_weights(ParticleSet<T>& ps, std::size_t n) {
+    L::for_each(n, VolumeWeightKernel<T>{make_view(ps)});
+}
+
+// The smallest acceleration time-step limit of the first n particles (AccelerationStepKernel).
+template <class L = DefaultLauncher, class T>
+double acceleration_time_step_min(ParticleSet<T>& ps, std::size_t n, double eps) {
+    return L::reduce_min(n, AccelerationStepKernel<T>{make_view(ps), eps});
+}
+
+} // namespace exasph

@@ -1,0 +1,95 @@
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/av_switch.hpp"
+#include "exasph/sph/integrator.hpp"
+#include "exasph/sph/smoothing_length.hpp"
+#include "exasph/sph/timestep.hpp"
+#include "exasph/util/box.hpp"
+
+// Per-particle kernels of the step that need no neighbours: the update of the state (SPEC 7),
+// of h (SPEC 2), of the AV switch's alpha (SPEC 6) and of the volume-element weights, and the
+// acceleration time-step limit. Each is a functor called as k(i) by a launcher (sph/launch.hpp).
+namespace exasph {
+
+// SPEC 7: Press scheme for x and v, Adams-Bashforth for u, periodic wrap of x and x_{n-1}.
+template <class T>
+struct StateUpdateKernel {
+    ParticleView<T> p;
+    Box<T> box;
+    T dt, dt_m1;
+
+    EXASPH_HD void operator()(std::uint32_t i) const {
+        const Field pos[3] = {Field::x, Field::y, Field::z};
+        const Field prev[3] = {Field::x_m1, Field::y_m1, Field::z_m1};
+        const Field vel[3] = {Field::vx, Field::vy, Field::vz};
+        const Field acc[3] = {Field::ax, Field::ay, Field::az};
+        for (int d = 0; d < 3; ++d) {
+            T x = p[pos[d]][i];
+            auto r = press_update(x, p[prev[d]][i], p[acc[d]][i], dt, dt_m1);
+            T shift = box.wrap_shift(r.x, d);
+            p[pos[d]][i] = r.x + shift;
+            p[prev[d]][i] = x + shift;
+            p[vel[d]][i] = r.v;
+        }
+        p[Field::u][i] =
+            adams_bashforth_energy(p[Field::u][i], p[Field::du][i], p[Field::du_m1][i], dt, dt_m1);
+        p[Field::du_m1][i] = p[Field::du][i];
+    }
+};
+
+// SPEC 2: h from this step's neighbour count.
+template <class T>
+struct SmoothingLengthKernel {
+    ParticleView<T> p;
+    T ng0;
+
+    EXASPH_HD void operator()(std::uint32_t i) const {
+        p[Field::h][i] = update_smoothing_length(p[Field::h][i], T(p.narrow(Field::nc)[i]), ng0);
+    }
+};
+
+// The AV switch: alpha follows the compression of the step (sph/av_switch.hpp).
+template <class T>
+struct ViscosityKernel {
+    ParticleView<T> p;
+    T dt, alpha_min, alpha_max, decay;
+
+    EXASPH_HD void operator()(std::uint32_t i) const {
+        T* alpha = p[Field::alpha];
+        alpha[i] = evolve_alpha(alpha[i], p[Field::divv][i], p[Field::h][i],
+                                T(p.narrow(Field::c)[i]), dt, alpha_min, alpha_max, decay);
+    }
+};
+
+// Decay rate of the AV switch in sound-crossing times of h (Morris & Monaghan 1997).
+inline constexpr double kAlphaDecay = 0.2;
+
+// Generalised volume elements: X_a = (m_a / rho_a)^p from this step's density, used by the
+// next step (Hopkins 2013 / Cabezon et al. 2017 with p = 0.7).
+inline constexpr double kVolumeElementExponent = 0.7;
+template <class T>
+struct VolumeWeightKernel {
+    ParticleView<T> p;
+
+    EXASPH_HD void operator()(std::uint32_t i) const {
+        const double v = double(p[Field::m][i] / p.narrow(Field::rho)[i]);
+        p[Field::xm][i] = T(std::pow(v, kVolumeElementExponent));
+    }
+};
+
+// SPEC 7 with gravity: the acceleration limit sqrt(eps h / |a|) of particle i.
+template <class T>
+struct AccelerationStepKernel {
+    ParticleView<T> p;
+    double eps;
+
+    EXASPH_HD double operator()(std::uint32_t i) const {
+        return acceleration_time_step(double(p[Field::h][i]), double(p[Field::ax][i]),
+                                      double(p[Field::ay][i]), double(p[Field::az][i]), eps);
+    }
+};
+
+} // namespace exasph

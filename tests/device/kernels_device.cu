@@ -1,0 +1,61 @@
+// Compiles every per-particle kernel of sph/ (the *_kern.hpp functors) as device code, in both
+// precisions: what a CUDA launcher will call. Built by test_kernels_nvcc.sh with warnings as
+// errors; nothing here runs.
+#include <cstdint>
+
+#include "exasph/sph/density_kern.hpp"
+#include "exasph/sph/iad_kern.hpp"
+#include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/sph/update_kern.hpp"
+
+using namespace exasph;
+
+namespace {
+
+template <class Kernel>
+__global__ void neighbour_pass(Kernel k, const std::uint32_t* lists, std::uint32_t count,
+                               std::uint32_t n, double* out) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= n) return;
+    // Interleaved lists: neighbour j of particle i at lists[j * n + i].
+    const NeighbourSpan nb{lists + i, count, n};
+    if constexpr (std::is_void_v<decltype(k(i, nb))>)
+        k(i, nb);
+    else
+        out[i] = double(k(i, nb));
+}
+
+template <class Kernel>
+__global__ void particle_pass(Kernel k, std::uint32_t n, double* out) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    if (i >= n) return;
+    if constexpr (std::is_void_v<decltype(k(i))>)
+        k(i);
+    else
+        out[i] = double(k(i));
+}
+
+template <class T>
+void instantiate(ParticleView<T> p, Box<T> box, KernelView<T> kv, const std::uint32_t* lists,
+                 double* out) {
+    neighbour_pass<<<1, 32>>>(DensityEosKernel<T>{p, box, kv, EosParams{}, false}, lists, 8, 32,
+                              out);
+    neighbour_pass<<<1, 32>>>(IadKernel<T>{p, box, kv, true}, lists, 8, 32, out);
+    Dissipation<T> d;
+    neighbour_pass<<<1, 32>>>(MomentumEnergyKernel<T, true, true, true>{p, box, kv, d, T(0.2)},
+                              lists, 8, 32, out);
+    neighbour_pass<<<1, 32>>>(MomentumEnergyKernel<T, false, false, false>{p, box, kv, d, T(0.2)},
+                              lists, 8, 32, out);
+    particle_pass<<<1, 32>>>(StateUpdateKernel<T>{p, box, T(1), T(1)}, 32, out);
+    particle_pass<<<1, 32>>>(SmoothingLengthKernel<T>{p, T(100)}, 32, out);
+    particle_pass<<<1, 32>>>(ViscosityKernel<T>{p, T(1), T(0.05), T(1), T(0.2)}, 32, out);
+    particle_pass<<<1, 32>>>(VolumeWeightKernel<T>{p}, 32, out);
+    particle_pass<<<1, 32>>>(AccelerationStepKernel<T>{p, 0.2}, 32, out);
+}
+
+} // namespace
+
+void instantiate_all(const std::uint32_t* lists, double* out) {
+    instantiate(ParticleView<double>{}, Box<double>{}, KernelView<double>{}, lists, out);
+    instantiate(ParticleView<float>{}, Box<float>{}, KernelView<float>{}, lists, out);
+}
