@@ -1,5 +1,6 @@
 #pragma once
 // The command line's run options, generated from the parameter table (config/parameters.hpp).
+#include <cctype>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -52,7 +53,16 @@ CLI::Option* add_choice(CLI::App& app, const Param& p, const std::string& help, 
     for (const auto& [name, v] : Choices<E>::values) names.emplace_back(name);
     return app
         .add_option_function<std::string>(
-            p.flags, [&value](const std::string& s) { value = *choice_from_name<E>(s); }, help)
+            p.flags,
+            [&value, flag = long_flag(p)](std::string s) {
+                for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+                const auto e = choice_from_name<E>(s);
+                if (!e)
+                    throw CLI::ValidationError(flag,
+                                               "'" + s + "' is not one of " + choice_list<E>());
+                value = *e;
+            },
+            help)
         ->check(CLI::IsMember(names, CLI::ignore_case))
         ->default_str(std::string(choice_name(value)));
 }

@@ -43,6 +43,12 @@ void add_options(CLI::App& app, exasph::Config& cfg) {
     exasph::cli::add_parameters(app, cfg);
     app.get_option("--init")->check(init_check());
     app.get_option("--restart")->check(CLI::ExistingFile);
+    std::string fields;
+    for (const auto& info : exasph::kFieldTable)
+        if (info.roles & exasph::kSnapshot)
+            fields += (fields.empty() ? "" : ",") + std::string(info.name);
+    auto* f = app.get_option("--fields");
+    f->description(f->get_description() + " (all: " + fields + ")");
     app.footer(cases_help());
     app.set_version_flag("--version", std::string("exasph ") + exasph::kVersion + " (" +
                                           exasph::kBuildInfo + ")");

@@ -78,18 +78,24 @@ inline void add_exact_command(CLI::App& app, ExactCommand& ec) {
         ->capture_default_str();
 }
 
+// The table of an exact solution: `state(r)` at ec.points radii up to ec.rmax.
+template <class State>
+void print_table(const ExactCommand& ec, State state) {
+    std::printf("# r rho v P u\n");
+    for (int i = 0; i < ec.points; ++i) {
+        const double r = ec.rmax * (i + 0.5) / ec.points;
+        const auto st = state(r);
+        std::printf("%.8e %.8e %.8e %.8e %.8e\n", r, st.rho, st.v, st.p, st.u);
+    }
+}
+
 inline void print_sedov(const ExactCommand& ec) {
     exasph::SedovSolution s(ec.gamma);
     std::printf("# Sedov-Taylor, gamma %.6g, E %.6g, rho1 1, t %.6g: xi0 %.6f, shock radius "
                 "%.6f, post-shock density %.6f\n",
                 ec.gamma, ec.energy, ec.t, s.xi0(), s.shock_radius(ec.energy, 1, ec.t),
                 (ec.gamma + 1) / (ec.gamma - 1));
-    std::printf("# r rho v P u\n");
-    for (int i = 0; i < ec.points; ++i) {
-        double r = ec.rmax * (i + 0.5) / ec.points;
-        auto st = s.at(r, ec.t, ec.energy, 1.0);
-        std::printf("%.8e %.8e %.8e %.8e %.8e\n", r, st.rho, st.v, st.p, st.u);
-    }
+    print_table(ec, [&](double r) { return s.at(r, ec.t, ec.energy, 1.0); });
 }
 
 inline void print_noh(const ExactCommand& ec) {
@@ -97,12 +103,7 @@ inline void print_noh(const ExactCommand& ec) {
     std::printf("# Noh, gamma %.6g, rho0 1, v0 -1, t %.6g: shock radius %.6f, post-shock density "
                 "%.6f\n",
                 ec.gamma, ec.t, n.shock_radius(ec.t), n.post_shock_density());
-    std::printf("# r rho v P u\n");
-    for (int i = 0; i < ec.points; ++i) {
-        double r = ec.rmax * (i + 0.5) / ec.points;
-        auto st = n.at(r, ec.t);
-        std::printf("%.8e %.8e %.8e %.8e %.8e\n", r, st.rho, st.v, st.p, st.u);
-    }
+    print_table(ec, [&](double r) { return n.at(r, ec.t); });
 }
 
 inline int run_exact(const ExactCommand& ec) {

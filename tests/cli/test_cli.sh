@@ -46,6 +46,15 @@ expect_rejected "carries no field" --init sedov -n 10 -s 2 --inject-fault 1:alph
 expect_rejected "smoothing length" -n 4 -s 1
 expect_rejected "--theta" --init evrard --theta 1.5
 expect_rejected "open box" --init sedov --lattice -n 10 --G 1 -s 1
+expect_rejected "--curve" --curve peano
+expect_rejected "--on-sdc" --on-sdc maybe
+
+# Closed choices take their names in any case; the header shows every physics parameter and
+# the run-control parameters that differ from their defaults (issue 15).
+out=$("$exe" -n 10 -s 1 --curve Morton --on-sdc ABORT --out "$work/names" 2>&1)
+echo "$out" | grep -q "curve morton" || fail "header lacks 'curve morton': $out"
+echo "$out" | grep -q "on_sdc abort" || fail "header lacks 'on_sdc abort': $out"
+"$exe" --help | grep -q "sound_speed (3500)" || fail "--help lacks the case parameters"
 
 # A rollback directory that cannot be created (below a file): output I/O failure, exit code 3,
 # one line naming the rollback point.

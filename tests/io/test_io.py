@@ -67,6 +67,9 @@ def test_restart(r):
     # Changing physics on restart is refused.
     p = r.run(1, "--restart", r.work / "full1" / "checkpoint_000010.h5", "--ng0", 50, expect=2)
     assert "--ng0" in p.stderr, p.stderr
+    # So are the gravity parameters (issue 15: they used to be silently replaced), in one line.
+    p = r.run(1, "--restart", r.work / "full1" / "checkpoint_000010.h5", "--theta", 0.7, expect=2)
+    assert "--theta" in p.stderr and p.stderr.strip().count("\n") == 0, p.stderr
 
 
 def wait_for(path, timeout=120):
