@@ -2,8 +2,9 @@
 """The structural rules of docs/architecture.md, checked over the source tree (issue 15):
   - no header in include/ over 300 lines;
   - no function (or lambda) over 80 lines in include/, src/, apps/;
-  - the layer rules: cases/ includes nothing from sim/ and calls no MPI function, gravity/
-    includes nothing from sph/, io/ includes nothing from sim/ (and the lower layers below).
+  - the layer rules: a layer includes only the layers before it in LAYERS (so cases/ includes
+    nothing from sim/, io/ nothing from sim/), gravity/ nothing from sph/, and cases/ calls no
+    MPI function.
 Usage: check_structure.py SOURCE_DIR. Prints every violation; exit 1 if there is any."""
 import pathlib
 import re
@@ -12,19 +13,14 @@ import sys
 MAX_HEADER_LINES = 300
 MAX_FUNCTION_LINES = 80
 
-# Folder -> folders of include/exasph/ it must not include (docs/architecture.md, "Layers").
-FORBIDDEN_INCLUDES = {
-    "util": ["particles", "sfc", "tree", "domain", "kernel", "sph", "gravity", "exact", "cases",
-             "config", "io", "glass", "sim", "run"],
-    "config": ["particles", "tree", "domain", "kernel", "sph", "gravity", "cases", "io", "glass",
-               "sim", "run"],
-    "kernel": ["sph", "gravity", "domain", "cases", "io", "glass", "sim", "run"],
-    "sph": ["gravity", "domain", "cases", "io", "glass", "sim", "run"],
-    "gravity": ["sph", "cases", "io", "glass", "sim", "run"],
-    "cases": ["sim", "glass", "domain", "io", "run"],
-    "io": ["sim", "glass", "run"],
-    "sim": ["glass", "run"],
-    "glass": ["run"],
+# The layers of include/exasph/ in order (docs/architecture.md, "Layers"): a layer may include
+# only the layers before it, and not these either:
+LAYERS = ["util", "sfc", "config", "particles", "tree", "domain", "kernel", "sph", "gravity",
+          "exact", "cases", "io", "sim", "glass", "run"]
+ALSO_FORBIDDEN = {
+    "sph": ["domain"],           # kernels and launchers know nothing of the decomposition
+    "gravity": ["sph"],          # the kernel table lives in kernel/
+    "cases": ["domain", "tree"],  # cases make particles; the run distributes them
 }
 MPI_CALL = re.compile(r"\bMPI_[A-Z][a-z_]*\s*\(")
 CONTROL = re.compile(r"^\s*(if|for|while|switch|else|do|catch|try|namespace|struct|class|union|"
@@ -82,16 +78,21 @@ def main(root):
         for start, n in long_functions(s):
             problems.append(f"{s.relative_to(root)}:{start}: function of {n} lines "
                             f"(at most {MAX_FUNCTION_LINES})")
-    for layer, forbidden in FORBIDDEN_INCLUDES.items():
+    for layer in LAYERS:
+        allowed = set(LAYERS[: LAYERS.index(layer) + 1]) - set(ALSO_FORBIDDEN.get(layer, []))
         for h in sorted((root / "include" / "exasph" / layer).glob("*.hpp")):
             text = h.read_text()
             for inc in re.findall(r'#include "exasph/(\w+)/', text):
-                if inc in forbidden:
+                if inc not in allowed:
                     problems.append(f"{h.relative_to(root)}: {layer}/ includes {inc}/")
             if layer == "cases":
                 code = strip_comments_and_strings(text)
                 if MPI_CALL.search(code) or "<mpi.h>" in text:
                     problems.append(f"{h.relative_to(root)}: cases/ uses MPI")
+    for d in sorted((root / "include" / "exasph").iterdir()):
+        if d.is_dir() and d.name not in LAYERS:
+            problems.append(f"{d.relative_to(root)}: a folder that is not a layer of "
+                            "docs/architecture.md")
     for p in problems:
         print(p)
     print(f"checked {len(headers)} headers and {len(sources)} sources: "
