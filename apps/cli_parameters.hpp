@@ -19,14 +19,9 @@ namespace exasph::cli {
 inline CLI::Validator sign_check(bool allow_zero) {
     return CLI::Validator(
         [allow_zero](std::string& s) -> std::string {
-            double v = 0;
-            try {
-                std::size_t used = 0;
-                v = std::stod(s, &used);
-                if (used != s.size()) return "'" + s + "' is not a number";
-            } catch (const std::exception&) {
-                return "'" + s + "' is not a number";
-            }
+            const auto x = parse_number(s);
+            if (!x) return "'" + s + "' is not a number";
+            const double v = *x;
             if (allow_zero ? v < 0 : v <= 0)
                 return "value " + s + (allow_zero ? " is negative" : " must be positive");
             return {};

@@ -7,6 +7,7 @@
 
 #include "exasph/cases/case_context.hpp"
 #include "exasph/cases/initial_conditions.hpp"
+#include "exasph/config/choices.hpp"
 #include "exasph/util/error.hpp"
 
 namespace exasph {
@@ -59,16 +60,10 @@ void apply_case_params(const std::string& name, const std::vector<CaseKey<P>>& k
             throw input_error("--param " + kv + ": case " + name + " has the parameters " +
                                   (names.empty() ? "(none)" : names) + " (use KEY=VALUE)",
                               true);
-        double v = 0;
-        std::size_t used = 0;
-        try {
-            v = std::stod(kv.substr(eq + 1), &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used == 0 || used != kv.size() - eq - 1 || !std::isfinite(v) || !(v > 0))
+        const auto v = parse_number(kv.substr(eq + 1));
+        if (!v || !std::isfinite(*v) || !(*v > 0))
             throw input_error("--param " + kv + ": the value must be a positive number", true);
-        p.*(found->member) = v;
+        p.*(found->member) = *v;
     }
 }
 

@@ -2,6 +2,7 @@
 #include <array>
 #include <cstdio>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -53,6 +54,17 @@ std::string choice_list() {
         s += std::string(i == 0 ? "" : (i + 1 == v.size() ? " or " : ", ")) +
              std::string(v[i].first);
     return s;
+}
+
+// The number the whole of `text` spells (no trailing characters), or nothing.
+inline std::optional<double> parse_number(const std::string& text) {
+    try {
+        std::size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (used == text.size()) return v;
+    } catch (const std::exception&) {
+    }
+    return std::nullopt;
 }
 
 // Numbers in the run header and in messages: %g, which prints integers without a fraction.

@@ -7,7 +7,7 @@
 
 namespace exasph {
 
-// Closed choices of the command line (names in config/parameters.hpp).
+// Closed choices of the command line (their names: config/choices.hpp).
 enum class SdcPolicy { rollback, abort, off }; // --on-sdc
 enum class RollbackStore { disk, memory };     // --sdc-rollback-store
 

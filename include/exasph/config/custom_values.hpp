@@ -17,19 +17,13 @@ struct CustomValue {
 // -w N (every N steps: an integer) or -w T (every T of physical time: a decimal point or an
 // exponent makes it a time).
 inline void parse_write_every(const std::string& v, Config& cfg) {
-    std::size_t used = 0;
-    double x = 0;
-    try {
-        x = std::stod(v, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != v.size() || !(x > 0))
+    const auto x = parse_number(v);
+    if (!x || !(*x > 0))
         throw std::invalid_argument("'" + v + "' is not a positive step count or time");
     if (v.find_first_of(".eE") == std::string::npos)
-        cfg.snapshot_every_steps = std::int64_t(x);
+        cfg.snapshot_every_steps = std::int64_t(*x);
     else
-        cfg.snapshot_every_time = x;
+        cfg.snapshot_every_time = *x;
 }
 inline std::string format_write_every(const Config& cfg) {
     if (cfg.snapshot_every_steps > 0) return std::to_string(cfg.snapshot_every_steps);
