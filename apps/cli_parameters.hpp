@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "exasph/config/parameters.hpp"
+#include "exasph/config/scheme.hpp"
 #include "exasph/util/error.hpp"
 
 namespace exasph::cli {
@@ -126,6 +127,13 @@ inline void check_restart_rule(const CLI::App& app, const Config& cfg) {
                               ")",
                           true);
     }
+}
+
+// The formulation of a new run: the scheme given with --scheme, else `case_default`; the
+// parameters given explicitly keep their values. (A restart restores them from the checkpoint.)
+inline void resolve_scheme(const CLI::App& app, Config& cfg, Scheme case_default) {
+    const Scheme s = app.count("--scheme") > 0 ? cfg.scheme : case_default;
+    apply_scheme(cfg, s, [&app](const Param& p) { return app.count(long_flag(p)) > 0; });
 }
 
 } // namespace exasph::cli

@@ -30,8 +30,9 @@ CLI::Validator init_check() {
 std::string cases_help() {
     std::string s = "Test cases (--init NAME; --param KEY=VALUE sets a case parameter):\n";
     for (const exasph::CaseInfo* c : exasph::case_registry()) {
-        s += "  " + c->name + ": " + c->summary + (c->from_points ? " (glass or --lattice)" : "") +
-             "\n";
+        s += "  " + c->name + ": " + c->summary + " (" +
+             (c->from_points ? "glass or --lattice, " : "") + "scheme " +
+             std::string(exasph::choice_name(c->scheme)) + ")\n";
         for (const auto& p : c->params)
             s += "      " + p.key + " (" + exasph::format_number(p.default_value) + "): " + p.help +
                  "\n";
@@ -114,6 +115,8 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("glass")) return finish(run_glass(glass_cmd));
         if (app.got_subcommand("exact")) return finish(run_exact(exact_cmd));
         exasph::cli::check_restart_rule(app, cfg);
+        if (cfg.restart_file.empty())
+            exasph::cli::resolve_scheme(app, cfg, exasph::default_scheme(cfg.init));
         return finish(exasph::run(cfg, std::cout));
     } catch (const exasph::Error& e) {
         return finish_with_error(e.what(), e.exit_code(), e.all_ranks());

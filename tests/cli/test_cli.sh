@@ -18,6 +18,22 @@ echo "$out" | grep -q "8000 particles" || fail "header lacks the particle count"
 echo "$out" | grep -q "particle-steps/s" || fail "no summary"
 [ "$(wc -l < "$work/run/diagnostics.csv")" -eq 6 ] || fail "diagnostics.csv should have 6 lines"
 
+# The formulation (issue 16): each case's default scheme, printed in the header; options given
+# beside a scheme keep their values.
+header() { "$exe" "$@" -s 0 --lattice --out "$work/scheme" 2>&1 | grep '^physics:'; }
+h=$(header --init square-patch -n 8)
+echo "$h" | grep -q "scheme std,.*conductivity 0, av_limiter off, volume_elements off" ||
+    fail "square-patch should default to the std scheme: $h"
+h=$(header --init sedov -n 8)
+echo "$h" | grep -q "scheme ve,.*conductivity 1, av_limiter on, volume_elements on" ||
+    fail "sedov should default to the ve scheme: $h"
+h=$(header --init sedov -n 8 --scheme std)
+echo "$h" | grep -q "scheme std,.*conductivity 0, av_limiter off, volume_elements off" ||
+    fail "--scheme std: $h"
+h=$(header --init sedov -n 8 --conductivity 0.5)
+echo "$h" | grep -q "scheme ve,.*conductivity 0.5, av_limiter on" ||
+    fail "--conductivity beside the ve scheme should keep its value: $h"
+
 # Bad input: exit code 2 and one line naming the option.
 expect_rejected() { # NAME_IN_MESSAGE ARGS...
     local needle=$1
@@ -30,6 +46,7 @@ expect_rejected() { # NAME_IN_MESSAGE ARGS...
     [ "$(echo "$msg" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $msg"
 }
 expect_rejected "--bogus" --bogus
+expect_rejected "--scheme" --scheme nosuch
 expect_rejected "-n" -n 0
 expect_rejected "-n" -n abc
 expect_rejected "nosuchcase" --init nosuchcase

@@ -51,6 +51,7 @@ std::string changed_value(const Param& p) {
     if (key == "on_sdc") return "abort";
     if (key == "sdc_rollback_store") return "memory";
     if (key == "curve") return "morton";
+    if (key == "scheme") return "ve";
     if (key == "steps") return "5";
     if (key == "restart") return "";
     return std::visit(

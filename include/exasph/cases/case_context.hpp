@@ -15,11 +15,16 @@ struct CaseContext {
     int nranks = 1;
     std::function<double(double)> sum_over_ranks = [](double x) { return x; };
     std::function<UnitCubePoints()> points;
+    // A thin slab of the same spacing, slab_layers(side) points thick (the 2D-like cases).
+    std::function<UnitCubePoints()> slab_points;
 
     // One rank, from the given points (tests, benchmarks).
     static CaseContext one_rank(UnitCubePoints pts) {
         CaseContext c;
-        c.points = [pts = std::move(pts)] { return pts; };
+        c.points = [pts] { return pts; };
+        c.slab_points = [pts] {
+            return UnitCubePoints::lattice(pts.side(), slab_layers(pts.side()));
+        };
         return c;
     }
 };

@@ -34,6 +34,8 @@ struct CaseInfo {
     bool from_points = false; // made from a glass or, with --lattice, a lattice
     std::vector<CaseParamInfo> params;
     std::function<InitialConditions<double>(const CaseRequest&, const CaseContext&)> make;
+    // The scheme a run of this case uses when --scheme is not given (config/scheme.hpp).
+    Scheme scheme = Scheme::ve;
 };
 
 // A --param key of the case whose parameters are P.
@@ -72,7 +74,7 @@ void apply_case_params(const std::string& name, const std::vector<CaseKey<P>>& k
 template <class P, class Maker>
 CaseInfo case_info(std::string name, std::string summary, bool from_points,
                    std::vector<CaseKey<P>> keys, Maker maker) {
-    CaseInfo info{name, std::move(summary), from_points, {}, {}};
+    CaseInfo info{name, std::move(summary), from_points, {}, {}, Scheme::ve};
     const P defaults{};
     for (const auto& k : keys) info.params.push_back({k.key, k.help, defaults.*(k.member)});
     info.make = [name, keys, maker](const CaseRequest& req, const CaseContext& ctx) {
@@ -84,6 +86,12 @@ CaseInfo case_info(std::string name, std::string summary, bool from_points,
         apply_case_params(name, keys, req.params, p);
         return maker(p, ctx);
     };
+    return info;
+}
+
+// `info` with its default scheme set to s.
+inline CaseInfo with_scheme(Scheme s, CaseInfo info) {
+    info.scheme = s;
     return info;
 }
 

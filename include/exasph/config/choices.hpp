@@ -31,6 +31,12 @@ struct Choices<RollbackStore> {
         {{"disk", RollbackStore::disk}, {"memory", RollbackStore::memory}}};
 };
 
+template <>
+struct Choices<Scheme> {
+    static constexpr std::array<std::pair<std::string_view, Scheme>, 2> values{
+        {{"std", Scheme::std_sph}, {"ve", Scheme::ve}}};
+};
+
 template <class E>
 std::string_view choice_name(E e) {
     for (const auto& [name, value] : Choices<E>::values)

@@ -10,6 +10,7 @@ namespace exasph {
 // Closed choices of the command line (their names: config/choices.hpp).
 enum class SdcPolicy { rollback, abort, off }; // --on-sdc
 enum class RollbackStore { disk, memory };     // --sdc-rollback-store
+enum class Scheme { std_sph, ve };             // --scheme (config/scheme.hpp)
 
 // Everything a run is configured with. Each member that the command line sets is declared
 // once more, with its flag, help, unit and restart rule, in the parameter table
@@ -21,6 +22,9 @@ struct Config {
     std::int64_t steps = -1;           // -s; < 0: not given
     double t_end = -1.0;               // --t-end; < 0: not given
     std::string out_dir = "exasph-output";
+    // The formulation: a scheme names the values of the parameters from alpha to
+    // volume_elements (config/scheme.hpp); Config{} is the std scheme.
+    Scheme scheme = Scheme::std_sph;
     double ng0 = 100;             // target neighbour count (SPEC 2)
     int ngmax = 150;              // neighbour cap: exceeding it is reported
     double kernel_exponent = 6;   // sinc exponent n (SPEC 1)

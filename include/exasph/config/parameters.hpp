@@ -38,7 +38,7 @@ inline constexpr ValueRange kNonNegative{ValueRange::nonnegative};
 using ParamMember =
     std::variant<double Config::*, int Config::*, std::int64_t Config::*, bool Config::*,
                  std::string Config::*, std::vector<std::string> Config::*, CurveKind Config::*,
-                 SdcPolicy Config::*, RollbackStore Config::*, CustomValue>;
+                 Scheme Config::*, SdcPolicy Config::*, RollbackStore Config::*, CustomValue>;
 
 // One run parameter, declared once: the command line, --help, the restart rule, the checkpoint
 // attributes and the run header are all generated from kParameters.
@@ -63,9 +63,16 @@ inline const std::array kParameters{
           &Config::side, in_range(2, 1000)},
     Param{"--param", "case_params", "Case parameter KEY=VALUE (repeatable; the keys of each case "
           "are listed below)", "", OnRestart::initial, &Config::case_params, {}, false},
-    Param{"--lattice", "lattice", "Glass cases (sedov, noh, evrard): start from a regular "
-          "lattice instead of a relaxed glass", "", OnRestart::initial, &Config::lattice},
+    Param{"--lattice", "lattice", "Glass cases (marked 'glass or --lattice' in the list of "
+          "cases): start from a regular lattice instead of a relaxed glass", "",
+          OnRestart::initial, &Config::lattice},
     // Physics
+    Param{"--scheme", "scheme", "Formulation: std (the paper's: standard SPH volumes, alpha "
+          "viscosity on every approaching pair, no conductivity) or ve (generalised volume "
+          "elements, slope-limited viscosity, conductivity 1: the recommended one); options "
+          "given beside it override its values (default: the case's scheme, std for "
+          "square-patch, ve for the others and for files)", "", OnRestart::kept,
+          &Config::scheme, {}, false},
     Param{"--ng0", "ng0", "Target number of neighbours", "", OnRestart::kept, &Config::ng0,
           in_range(10, 1000)},
     Param{"--ngmax", "ngmax", "Neighbour cap; exceeding it is reported (lists are never "
@@ -82,13 +89,15 @@ inline const std::array kParameters{
     Param{"--alpha-min", "alpha_min", "AV switch: smallest alpha", "", OnRestart::kept,
           &Config::alpha_min, in_range(0, 10)},
     Param{"--conductivity", "conductivity", "Artificial conductivity coefficient alpha_u "
-          "(Price 2008); 0 is off", "", OnRestart::kept, &Config::conductivity, in_range(0, 10)},
+          "(Price 2008); 0 is off (set by --scheme: 0 std, 1 ve)", "", OnRestart::kept,
+          &Config::conductivity, in_range(0, 10)},
     Param{"--av-limiter", "av_limiter", "Artificial viscosity from velocities reconstructed "
           "linearly to each pair's midpoint with a van Leer slope limiter (Rosswog 2015): no "
-          "dissipation in smooth compression, full at shocks", "", OnRestart::kept,
-          &Config::av_limiter},
+          "dissipation in smooth compression, full at shocks (on in the ve scheme)", "",
+          OnRestart::kept, &Config::av_limiter},
     Param{"--volume-elements", "volume_elements", "Generalised volume elements X = (m/rho)^0.7 "
-          "instead of standard SPH volumes", "", OnRestart::kept, &Config::volume_elements},
+          "instead of standard SPH volumes (on in the ve scheme)", "", OnRestart::kept,
+          &Config::volume_elements},
     Param{"--G", "G", "Gravitational constant: self-gravity on the tree (SPEC 8) for any case in "
           "an open box; 0 turns it off (default: the case's, 1 for evrard, else off)",
           "code units", OnRestart::kept, &Config::G, in_range(0, 1e300), false},

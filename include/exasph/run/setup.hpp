@@ -33,6 +33,12 @@ inline CaseContext case_context(const Config& cfg, MPI_Comm comm, std::ostream* 
         const auto b = glass_block_side(side);
         return UnitCubePoints::tiled_glass(side, b, glass_block(b, ng0, comm, log));
     };
+    ctx.slab_points = [side, lattice, ng0, comm, log] {
+        const auto layers = slab_layers(side);
+        if (lattice) return UnitCubePoints::lattice(side, layers);
+        return UnitCubePoints::tiled_glass(side, layers, glass_block(layers, ng0, comm, log),
+                                           layers);
+    };
     return ctx;
 }
 

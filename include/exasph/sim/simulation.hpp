@@ -180,6 +180,9 @@ class Simulation {
     // step), IAD, momentum and energy, with the halo exchanges between them.
     void hydro_forces() {
         const auto k = kernel_.view();
+        if (step_ == 0 && cfg_.volume_elements)
+            settle_volume_weights<L>(ps_, nlists_, box_, k, eos_, n_owned(),
+                                     [&] { domain_.exchange_halos(ps_, kHaloSync); });
         compute_density<L>(ps_, nlists_, box_, k, eos_, step_ == 0 && eos_.kind == EosKind::tait);
         timer_.stop(kDensity);
         domain_.exchange_halos(ps_, kHaloDensity);

@@ -72,14 +72,16 @@ class StateGuard {
             const T x = ps[pos[d]][i];
             if (x < box.lo[d] || x > box.hi[d]) return "position outside the box";
         }
-        if (press_ok && !press_consistent(ps, i, dt)) return "x, x_m1, v, a disagree (Press)";
+        if (press_ok && !press_consistent(ps, i, box, dt)) return "x, x_m1, v, a disagree (Press)";
         return "";
     }
 
   private:
     // After a Press update (sph/integrator.hpp), x - x_m1 = dt (v - a dt / 2) up to round-off
-    // in each axis (a periodic wrap moves x and x_m1 together).
-    static bool press_consistent(const ParticleSet<T>& ps, std::size_t i, double dt) {
+    // in each axis. A periodic wrap moves x and x_m1 together by the period, rounding both at the
+    // period's magnitude (which |x| does not show in a box [0, L)).
+    static bool press_consistent(const ParticleSet<T>& ps, std::size_t i, const Box<T>& box,
+                                 double dt) {
         constexpr double eps = std::numeric_limits<T>::epsilon();
         const Field pos[3] = {Field::x, Field::y, Field::z};
         const Field prev[3] = {Field::x_m1, Field::y_m1, Field::z_m1};
@@ -89,8 +91,10 @@ class StateGuard {
             const double x = ps[pos[d]][i], xm = ps[prev[d]][i], v = ps[vel[d]][i],
                          a = ps[acc[d]][i];
             const double residual = std::abs((x - xm) - dt * (v - 0.5 * a * dt));
+            const double period = box.periodic[d] ? double(box.hi[d] - box.lo[d]) : 0.0;
             const double allowed =
-                16 * eps * (std::abs(x) + std::abs(xm) + dt * (std::abs(v) + std::abs(a) * dt));
+                16 * eps *
+                (std::abs(x) + std::abs(xm) + 2 * period + dt * (std::abs(v) + std::abs(a) * dt));
             if (!(residual <= allowed)) return false;
         }
         return true;

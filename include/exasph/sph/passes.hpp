@@ -90,6 +90,22 @@ void update_volume_weights(ParticleSet<T>& ps, std::size_t n) {
     L::for_each(n, VolumeWeightKernel<T>{make_view(ps)});
 }
 
+// Volume elements start from X = m, standard SPH's weights: before the first forces, a few
+// density passes, each with X = (m/rho)^0.7 of the pass before, let the weights settle, so that
+// a contact discontinuity of the initial conditions (the isobaric cube, the Kelvin-Helmholtz
+// layers) does not start with standard SPH's full pressure blip. exchange_x() sends X to the
+// halos.
+template <class L = DefaultLauncher, class T, class ExchangeX>
+void settle_volume_weights(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+                           const KernelView<T>& k, const EosParams& eos, std::size_t n,
+                           ExchangeX exchange_x, int passes = 4) {
+    for (int pass = 0; pass < passes; ++pass) {
+        compute_density<L>(ps, nl, box, k, eos);
+        update_volume_weights<L>(ps, n);
+        exchange_x();
+    }
+}
+
 // The smallest acceleration time-step limit of the first n particles (AccelerationStepKernel).
 template <class L = DefaultLauncher, class T>
 double acceleration_time_step_min(ParticleSet<T>& ps, std::size_t n, double eps) {

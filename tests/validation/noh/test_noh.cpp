@@ -1,26 +1,23 @@
-// Acceptance 3 (issue 5): Noh -n 40 (33.5k particles, glass) to t = 0.6 with the limited
-// midpoint-reconstructed viscosity, volume elements and artificial conductivity: mean density of
-// the particles in 0.05 < r < 0.15 within 20 % of 64, shock radius (where the radially binned
-// density first falls below 32) within 10 % of t/3.
+// Noh -n 40 (33.5k particles, glass) to t = 0.6 with the default scheme and no physics option
+// (issue 16, acceptance 1; issue 5, acceptance 3; the ve scheme's limited midpoint-reconstructed
+// viscosity, volume elements and artificial conductivity): mean density of the particles in
+// 0.05 < r < 0.15 within 20 % of 64, shock radius (where the radially binned density first falls
+// below 32) within 10 % of t/3.
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "case_config.hpp"
 #include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
 #include "radial_profile.hpp"
 
 using namespace exasph;
 
-TEST(Noh, N40LimitedViscosityReachesThePostShockState) {
-    Config cfg;
-    cfg.init = "noh";
-    cfg.side = 40;
-    cfg.av_limiter = true;
-    cfg.volume_elements = true;
-    cfg.conductivity = 2.0;
+TEST(Noh, N40DefaultSchemeReachesThePostShockState) {
+    const Config cfg = testref::case_config("noh", 40);
     const double t_end = 0.6;
     Simulation<double> sim(cfg, make_case(cfg));
     const double e0 = sim.diagnostics().etot;

@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""Figures and numbers of the slab and contact validation cases from exasph snapshots, as PNG.
+
+    /usr/bin/python3 tools/case_plots.py gresho SNAP [SNAP ...] -o gresho.png
+    /usr/bin/python3 tools/case_plots.py kh SNAP [SNAP ...] -o kh.png [--label A --label B]
+    /usr/bin/python3 tools/case_plots.py slice SNAP [SNAP ...] -o slices.png [--field rho]
+
+gresho: v_phi against radius (particles, binned mean, analytic profile) of the last snapshot,
+and L1(v_phi)/v0 of every snapshot (printed; plotted against time when there are several).
+kh: the McNally et al. (2012) mode amplitude of every snapshot against time (one curve per
+directory of snapshots, labelled with --label). slice: particles of a thin slice (|z - z_mid|
+below one smoothing length) of each snapshot, coloured by a field. Exits 2 with one line on a
+missing or malformed snapshot.
+"""
+import argparse
+import sys
+from pathlib import Path
+
+
+def fail(msg, code=2):
+    print(f"case_plots.py: {msg}", file=sys.stderr)
+    sys.exit(code)
+
+
+try:
+    import h5py
+    import numpy as np
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+except ImportError as exc:  # pragma: no cover
+    fail(f"needs numpy, h5py and matplotlib ({exc}); on Debian: apt-get install "
+         "python3-numpy python3-h5py python3-matplotlib (and run /usr/bin/python3)")
+
+
+def read_snapshot(path, need):
+    if not Path(path).exists():
+        fail(f"{path}: no such file")
+    try:
+        f = h5py.File(path, "r")
+    except OSError as exc:
+        fail(f"{path}: not a readable HDF5 file ({exc})")
+    steps = [k for k in f.keys() if k.startswith("Step#")]
+    if not steps:
+        fail(f"{path}: no Step#N group (not an exasph snapshot)")
+    g = f[max(steps, key=lambda k: int(k[5:]))]
+    missing = [k for k in need if k not in g]
+    if missing:
+        fail(f"{path}: snapshot lacks the fields {', '.join(missing)} (write them with -f)")
+    data = {k: np.asarray(g[k][()], dtype=float) for k in need}
+    data["time"] = float(g.attrs.get("time", 0.0))
+    data["box_lo"] = np.asarray(f.attrs.get("box_lo", [0, 0, 0]), dtype=float)
+    data["box_hi"] = np.asarray(f.attrs.get("box_hi", [1, 1, 1]), dtype=float)
+    return data
+
+
+def gresho_vphi(r, v0=1.0, r1=0.2):
+    s = r / r1
+    return v0 * np.where(s < 1, s, np.where(s < 2, 2 - s, 0.0))
+
+
+def gresho(args):
+    rows = []
+    for path in args.snapshots:
+        d = read_snapshot(path, ["x", "y", "vx", "vy"])
+        r = np.hypot(d["x"], d["y"])
+        keep = (r < 0.5) & (r > 0)
+        vphi = (d["x"] * d["vy"] - d["y"] * d["vx"])[keep] / r[keep]
+        l1 = np.mean(np.abs(vphi - gresho_vphi(r[keep])))
+        rows.append((d["time"], l1, r[keep], vphi))
+        print(f"{path}: t = {d['time']:.4f}, L1(v_phi)/v0 = {l1:.4f}")
+    t, l1, r, vphi = rows[-1]
+    fig, axes = plt.subplots(1, 2 if len(rows) > 1 else 1, figsize=(11 if len(rows) > 1 else 6, 4))
+    ax = axes[0] if len(rows) > 1 else axes
+    ax.plot(r, vphi, ",", color="0.6", label="particles")
+    edges = np.linspace(0, 0.5, 51)
+    idx = np.digitize(r, edges) - 1
+    mean = [vphi[idx == b].mean() if np.any(idx == b) else np.nan for b in range(50)]
+    ax.plot(0.5 * (edges[1:] + edges[:-1]), mean, "o-", ms=3, label="binned mean")
+    rr = np.linspace(0, 0.5, 500)
+    ax.plot(rr, gresho_vphi(rr), "k--", label="analytic")
+    ax.set(xlabel="r", ylabel="v_phi", title=f"{args.title} t = {t:.2f}, L1 = {l1:.4f}")
+    ax.legend()
+    if len(rows) > 1:
+        axes[1].plot([q[0] for q in rows], [q[1] for q in rows], "o-")
+        axes[1].set(xlabel="t", ylabel="L1(v_phi) / v0", title="L1 against time")
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=110)
+
+
+def mode_amplitude(d):
+    x, y, vy = d["x"], d["y"], d["vy"]
+    w = np.exp(-4 * np.pi * np.abs(np.where(y < 0.5, y, 1 - y) - 0.25))
+    vol = d["m"] / d["rho"]
+    s = np.sum(vol * vy * np.sin(4 * np.pi * x) * w)
+    c = np.sum(vol * vy * np.cos(4 * np.pi * x) * w)
+    n = np.sum(vol * w)
+    return 2 * np.hypot(s / n, c / n)
+
+
+def kh(args):
+    groups = {}
+    for path in args.snapshots:
+        groups.setdefault(str(Path(path).parent), []).append(path)
+    labels = args.label or list(groups)
+    if len(labels) != len(groups):
+        fail(f"{len(groups)} directories of snapshots but {len(labels)} --label")
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for label, paths in zip(labels, groups.values()):
+        pts = sorted((d["time"], mode_amplitude(d)) for d in
+                     (read_snapshot(p, ["x", "y", "vy", "m", "rho"]) for p in paths))
+        for t, a in pts:
+            print(f"{label}: t = {t:.3f}, mode amplitude {a:.4f}")
+        ax.semilogy([p[0] for p in pts], [p[1] for p in pts], "o-", ms=3, label=label)
+    ax.set(xlabel="t", ylabel="mode amplitude (McNally et al. 2012)", title=args.title)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=110)
+
+
+def slice_plot(args):
+    n = len(args.snapshots)
+    fig, axes = plt.subplots(1, n, figsize=(4.2 * n + 0.8, 4), squeeze=False)
+    for ax, path in zip(axes[0], args.snapshots):
+        d = read_snapshot(path, ["x", "y", "z", "h", args.field])
+        zmid = 0.5 * (d["box_lo"][2] + d["box_hi"][2])
+        keep = np.abs(d["z"] - zmid) < np.median(d["h"])
+        sc = ax.scatter(d["x"][keep], d["y"][keep], c=d[args.field][keep], s=args.size,
+                        cmap="viridis", linewidths=0)
+        ax.set_aspect("equal")
+        ax.set(xlabel="x", ylabel="y", title=f"t = {d['time']:.2f}")
+        fig.colorbar(sc, ax=ax, label=args.field, shrink=0.8)
+    fig.suptitle(args.title)
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=110)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    sub = ap.add_subparsers(dest="command", required=True)
+    for name, fn in (("gresho", gresho), ("kh", kh), ("slice", slice_plot)):
+        p = sub.add_parser(name)
+        p.add_argument("snapshots", nargs="+")
+        p.add_argument("-o", "--output", required=True, help="PNG file")
+        p.add_argument("--title", default="")
+        p.set_defaults(run=fn)
+        if name == "kh":
+            p.add_argument("--label", action="append", help="one per directory of snapshots")
+        if name == "slice":
+            p.add_argument("--field", default="rho")
+            p.add_argument("--size", type=float, default=2.0, help="marker size")
+    args = ap.parse_args()
+    args.run(args)
+
+
+if __name__ == "__main__":
+    main()
