@@ -4,12 +4,16 @@
     /usr/bin/python3 tools/case_plots.py gresho SNAP [SNAP ...] -o gresho.png
     /usr/bin/python3 tools/case_plots.py kh SNAP [SNAP ...] -o kh.png [--label A --label B]
     /usr/bin/python3 tools/case_plots.py slice SNAP [SNAP ...] -o slices.png [--field rho]
+    /usr/bin/python3 tools/case_plots.py wind SNAP [SNAP ...] -o wind.png [--label A --label B]
 
 gresho: v_phi against radius (particles, binned mean, analytic profile) of the last snapshot,
 and L1(v_phi)/v0 of every snapshot (printed; plotted against time when there are several).
 kh: the McNally et al. (2012) mode amplitude of every snapshot against time (one curve per
 directory of snapshots, labelled with --label). slice: particles of a thin slice (|z - z_mid|
-below one smoothing length) of each snapshot, coloured by a field. Exits 2 with one line on a
+below one smoothing length) of each snapshot, coloured by a field. wind: the wind-cloud test's
+surviving cloud fraction (cloud particles with rho >= 0.64 rho_cloud and u <= 0.9 u_wind,
+Agertz et al. 2007, for the case's default parameters) against t / tau_KH, one curve per
+directory. Exits 2 with one line on a
 missing or malformed snapshot.
 """
 import argparse
@@ -99,20 +103,46 @@ def mode_amplitude(d):
 
 
 def kh(args):
-    groups = {}
-    for path in args.snapshots:
-        groups.setdefault(str(Path(path).parent), []).append(path)
-    labels = args.label or list(groups)
-    if len(labels) != len(groups):
-        fail(f"{len(groups)} directories of snapshots but {len(labels)} --label")
     fig, ax = plt.subplots(figsize=(6, 4))
-    for label, paths in zip(labels, groups.values()):
+    for label, paths in group_by_directory(args.snapshots, args.label):
         pts = sorted((d["time"], mode_amplitude(d)) for d in
                      (read_snapshot(p, ["x", "y", "vy", "m", "rho"]) for p in paths))
         for t, a in pts:
             print(f"{label}: t = {t:.3f}, mode amplitude {a:.4f}")
         ax.semilogy([p[0] for p in pts], [p[1] for p in pts], "o-", ms=3, label=label)
     ax.set(xlabel="t", ylabel="mode amplitude (McNally et al. 2012)", title=args.title)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=110)
+
+
+def group_by_directory(paths, labels):
+    groups = {}
+    for path in paths:
+        groups.setdefault(str(Path(path).parent), []).append(path)
+    labels = labels or list(groups)
+    if len(labels) != len(groups):
+        fail(f"{len(groups)} directories of snapshots but {len(labels)} --label")
+    return zip(labels, groups.values())
+
+
+def wind(args):
+    contrast, u_wind, radius, v_wind = 10.0, 1.5, 0.025, 2.7
+    tau_kh = 1.6 * 2 * radius * np.sqrt(contrast) / v_wind
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for label, paths in group_by_directory(args.snapshots, args.label):
+        pts = []
+        for p in paths:
+            d = read_snapshot(p, ["id", "rho", "u"])
+            side = int(h5py.File(p, "r").attrs.get("param:side", 0))
+            cloud = d["id"] >= 4 * side ** 3
+            alive = cloud & (d["rho"] >= 0.64 * contrast) & (d["u"] <= 0.9 * u_wind)
+            pts.append((d["time"] / tau_kh, alive.sum() / max(cloud.sum(), 1)))
+        pts.sort()
+        for t, f in pts:
+            print(f"{label}: t = {t:.2f} tau_KH, surviving fraction {f:.3f}")
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", ms=3, label=label)
+    ax.set(xlabel="t / tau_KH", ylabel="surviving cloud fraction", title=args.title, ylim=(0, 1.1))
     ax.legend()
     fig.tight_layout()
     fig.savefig(args.output, dpi=110)
@@ -138,13 +168,13 @@ def slice_plot(args):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     sub = ap.add_subparsers(dest="command", required=True)
-    for name, fn in (("gresho", gresho), ("kh", kh), ("slice", slice_plot)):
+    for name, fn in (("gresho", gresho), ("kh", kh), ("slice", slice_plot), ("wind", wind)):
         p = sub.add_parser(name)
         p.add_argument("snapshots", nargs="+")
         p.add_argument("-o", "--output", required=True, help="PNG file")
         p.add_argument("--title", default="")
         p.set_defaults(run=fn)
-        if name == "kh":
+        if name in ("kh", "wind"):
             p.add_argument("--label", action="append", help="one per directory of snapshots")
         if name == "slice":
             p.add_argument("--field", default="rho")

@@ -24,8 +24,8 @@ inline constexpr std::array<SchemeValue, 5> kStdScheme{{{"alpha", 1},
 // ve: generalised volume elements (sharp contact discontinuities and density jumps),
 // artificial viscosity from slope-limited reconstructed velocities (no dissipation in smooth
 // flows: shear, rotation, convergent inflow), and conductivity 1 (Price 2008's value: the
-// start-up entropy of shocks spread out; 2 lowers Sedov's peak to 2.85, 0.5 leaves Noh's shell
-// at 48). Measured case by case in docs/validation.md.
+// start-up entropy of shocks spread out; 2 lowers Sedov's peak to 2.85, 0 leaves Noh's shell
+// at 47.7). Measured case by case in docs/validation.md.
 inline constexpr std::array<SchemeValue, 5> kVeScheme{{{"alpha", 1},
                                                        {"av_switch", 0},
                                                        {"conductivity", 1},

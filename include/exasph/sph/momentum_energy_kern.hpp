@@ -36,6 +36,8 @@ struct Dissipation {
 // spacing in units of h) lose the reconstruction smoothly, keeping the viscosity's barrier
 // against interpenetration. Phi and the midpoint are symmetric in a and b, so Pi_ab stays
 // symmetric and momentum and energy stay conserved.
+inline constexpr double kReconstructedApproachCap = 2.0;
+
 template <class T>
 EXASPH_HD T reconstructed_approach(T vabx, T vaby, T vabz, T dx, T dy, T dz, const T (&ga)[9],
                                    const T (&gb)[9], T eta, T eta_crit) {
@@ -149,6 +151,11 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
             T wt =
                 reconstructed_approach(vabx, vaby, vabz, dx, dy, dz, ga, gb, eta, diss.eta_crit) /
                 r;
+            // The reconstructed approach is at most kReconstructedApproachCap times the pair's
+            // own, so Pi_ab goes to 0 continuously as a pair stops approaching (a jump there
+            // turned the round-off of the summation order into 1e-7 force differences between
+            // rank counts); beyond 1, noisy gradients still damp velocity noise (Gresho-Chan).
+            wt = wt > kReconstructedApproachCap * w_ab ? wt : kReconstructedApproachCap * w_ab;
             pi_ab = wt < T(0) ? T(-0.5) * alpha_ab * (T(c[a]) + T(c[b]) - T(3) * wt) * wt : T(0);
         }
         T pb = T(pgrad[b]) * xa_ma;

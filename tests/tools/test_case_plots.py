@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""tools/case_plots.py makes its four figures from short runs of their cases, prints the numbers
+they plot (the Gresho-Chan L1 of an untouched vortex is 0), and exits 2 with one line on a
+missing snapshot."""
+import argparse
+import re
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+PLOTS = Path(__file__).resolve().parents[2] / "tools" / "case_plots.py"
+
+
+def run_case(exe, case, side, out, steps):
+    subprocess.run([exe, "--init", case, "-n", str(side), "--lattice", "-s", str(steps), "-w",
+                    str(steps), "--out", out], check=True, capture_output=True)
+    return sorted(Path(out).glob("snapshot_*.h5"))
+
+
+def plot(command, snaps, png, *extra):
+    p = subprocess.run([sys.executable, PLOTS, command, *map(str, snaps), "-o", str(png), *extra],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert png.exists() and png.stat().st_size > 15000, (command, png.stat().st_size)
+    last = (p.stdout.strip().splitlines() or [""])[-1]
+    print(f"{command}: PNG {png.stat().st_size} bytes; {last}")
+    return p.stdout
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--exe", required=True)
+    args = ap.parse_args()
+    with tempfile.TemporaryDirectory() as w:
+        w = Path(w)
+        out = plot("gresho", run_case(args.exe, "gresho-chan", 16, w / "g", 2), w / "g.png")
+        l1 = float(re.search(r"L1\(v_phi\)/v0 = ([0-9.e-]+)", out).group(1))
+        assert l1 < 0.01, f"two steps of the vortex: L1 {l1}"
+        plot("kh", run_case(args.exe, "kelvin-helmholtz", 16, w / "k", 2), w / "k.png")
+        plot("slice", run_case(args.exe, "isobaric-cube", 8, w / "c", 2), w / "c.png")
+        out = plot("wind", run_case(args.exe, "wind-cloud", 8, w / "w", 2), w / "w.png")
+        assert "surviving fraction 1.000" in out, out  # two steps: the cloud is intact
+        p = subprocess.run([sys.executable, PLOTS, "gresho", str(w / "missing.h5"), "-o",
+                            str(w / "x.png")], capture_output=True, text=True)
+        assert p.returncode == 2 and "no such file" in p.stderr, p.stderr
+        assert len(p.stderr.strip().splitlines()) == 1, p.stderr
+    print("case_plots: passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
