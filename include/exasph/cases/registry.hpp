@@ -20,8 +20,7 @@ inline const std::vector<const CaseInfo*>& case_registry() {
     static const std::vector<const CaseInfo*> cases{
         &square_patch_case(),     &sedov_case(),       &noh_case(),
         &evrard_case(),           &gresho_chan_case(), &isobaric_cube_case(),
-        &kelvin_helmholtz_case(),
-        &wind_cloud_case(),
+        &kelvin_helmholtz_case(), &wind_cloud_case(),
     };
     return cases;
 }
