@@ -5,6 +5,7 @@
     /usr/bin/python3 tools/case_plots.py kh SNAP [SNAP ...] -o kh.png [--label A --label B]
     /usr/bin/python3 tools/case_plots.py slice SNAP [SNAP ...] -o slices.png [--field rho]
     /usr/bin/python3 tools/case_plots.py wind SNAP [SNAP ...] -o wind.png [--label A --label B]
+    /usr/bin/python3 tools/case_plots.py turb SNAP [SNAP ...] -o turb.png [--label A --label B]
 
 gresho: v_phi against radius (particles, binned mean, analytic profile) of the last snapshot,
 and L1(v_phi)/v0 of every snapshot (printed; plotted against time when there are several).
@@ -13,8 +14,11 @@ directory of snapshots, labelled with --label). slice: particles of a thin slice
 below one smoothing length) of each snapshot, coloured by a field. wind: the wind-cloud test's
 surviving cloud fraction (cloud particles with rho >= 0.64 rho_cloud and u <= 0.9 u_wind,
 Agertz et al. 2007, for the case's default parameters) against t / tau_KH, one curve per
-directory. Exits 2 with one line on a
-missing or malformed snapshot.
+directory. turb: driven turbulence's rms Mach number against time (from the diagnostics.csv
+beside each directory's snapshots: v_rms about the mean velocity over the sound speed of the
+mean internal energy) and the velocity power spectrum E(k) of each directory's last snapshot
+(volume-weighted cloud-in-cell deposit on a grid of about one cell per particle spacing). Exits
+2 with one line on a missing or malformed snapshot.
 """
 import argparse
 import sys
@@ -148,6 +152,69 @@ def wind(args):
     fig.savefig(args.output, dpi=110)
 
 
+def mach_history(csv, gamma, mass):
+    if not Path(csv).exists():
+        fail(f"{csv}: no such file (turb reads the diagnostics.csv beside the snapshots)")
+    d = np.genfromtxt(csv, delimiter=",", names=True)
+    # v_rms^2 = 2 E_kin / M - |P / M|^2; c_s^2 = gamma (gamma - 1) E_int / M
+    v2 = 2 * d["ekin"] / mass - (d["px"] ** 2 + d["py"] ** 2 + d["pz"] ** 2) / mass ** 2
+    return d["time"], np.sqrt(np.maximum(v2, 0) / (gamma * (gamma - 1) * d["eint"] / mass))
+
+
+def velocity_spectrum(d):
+    n = max(8, int(round(len(d["m"]) ** (1 / 3))))
+    lo, length = d["box_lo"], d["box_hi"] - d["box_lo"]
+    vol = d["m"] / d["rho"]
+    weight = np.zeros((n, n, n))
+    mom = np.zeros((3, n, n, n))
+    s = np.stack([(d[a] - lo[k]) / length[k] * n - 0.5 for k, a in enumerate("xyz")])
+    i0 = np.floor(s).astype(int)
+    f = s - i0
+    for corner in range(8):
+        o = [(corner >> k) & 1 for k in range(3)]
+        w = vol * np.prod([f[k] if o[k] else 1 - f[k] for k in range(3)], axis=0)
+        idx = tuple((i0[k] + o[k]) % n for k in range(3))
+        np.add.at(weight, idx, w)
+        for k, a in enumerate(("vx", "vy", "vz")):
+            np.add.at(mom[k], idx, w * d[a])
+    v = mom / np.maximum(weight, 1e-300)
+    v -= v.mean(axis=(1, 2, 3), keepdims=True)
+    power = sum(np.abs(np.fft.fftn(c) / n ** 3) ** 2 for c in v)
+    kk = np.fft.fftfreq(n, 1.0 / n)
+    kmag = np.sqrt(sum(q ** 2 for q in np.meshgrid(kk, kk, kk, indexing="ij")))
+    shells = np.rint(kmag).astype(int)
+    spec = np.bincount(shells.ravel(), weights=power.ravel())
+    k = np.arange(len(spec))
+    keep = (k >= 1) & (k <= n // 2)
+    return k[keep], 0.5 * spec[keep]
+
+
+def turb(args):
+    fig, (ax_m, ax_e) = plt.subplots(1, 2, figsize=(11, 4))
+    for label, paths in group_by_directory(args.snapshots, args.label):
+        last = max(paths, key=lambda p: read_snapshot(p, [])["time"])
+        gamma = float(h5py.File(last, "r").attrs.get("gamma", 1.001))
+        d = read_snapshot(last, ["x", "y", "z", "vx", "vy", "vz", "m", "rho"])
+        t, mach = mach_history(Path(last).parent / "diagnostics.csv", gamma, d["m"].sum())
+        late = t >= 0.5 * t[-1]
+        print(f"{label}: Mach_rms {mach[-1]:.3f} at t = {t[-1]:.2f}; mean over "
+              f"t >= {0.5 * t[-1]:.2f}: {mach[late].mean():.3f} (min {mach[late].min():.3f}, "
+              f"max {mach[late].max():.3f})")
+        ax_m.plot(t, mach, label=label)
+        k, e = velocity_spectrum(d)
+        print(f"{label}: E(k) at t = {d['time']:.2f}: " +
+              ", ".join(f"k={a} {b:.2e}" for a, b in zip(k, e)))
+        ax_e.loglog(k, e, "o-", ms=3, label=f"{label}, t = {d['time']:.1f}")
+    ax_m.set(xlabel="t", ylabel="rms Mach number", title=args.title)
+    ax_e.set(xlabel="k L / 2 pi", ylabel="E(k)", title="velocity power spectrum")
+    kref = np.array([2.0, 8.0])
+    ax_e.loglog(kref, 0.5 * e[1] * (kref / 2) ** (-5 / 3), "k--", lw=0.8, label="k^-5/3")
+    for ax in (ax_m, ax_e):
+        ax.legend()
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=110)
+
+
 def slice_plot(args):
     n = len(args.snapshots)
     fig, axes = plt.subplots(1, n, figsize=(4.2 * n + 0.8, 4), squeeze=False)
@@ -168,13 +235,14 @@ def slice_plot(args):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     sub = ap.add_subparsers(dest="command", required=True)
-    for name, fn in (("gresho", gresho), ("kh", kh), ("slice", slice_plot), ("wind", wind)):
+    for name, fn in (("gresho", gresho), ("kh", kh), ("slice", slice_plot), ("wind", wind),
+                     ("turb", turb)):
         p = sub.add_parser(name)
         p.add_argument("snapshots", nargs="+")
         p.add_argument("-o", "--output", required=True, help="PNG file")
         p.add_argument("--title", default="")
         p.set_defaults(run=fn)
-        if name in ("kh", "wind"):
+        if name in ("kh", "wind", "turb"):
             p.add_argument("--label", action="append", help="one per directory of snapshots")
         if name == "slice":
             p.add_argument("--field", default="rho")

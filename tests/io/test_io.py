@@ -64,6 +64,19 @@ def test_restart(r):
     r.run(3, "--restart", r.work / "full2" / "checkpoint_000010.h5", "-s", 20, "--threads", 1,
           "--checkpoint-every", 10, "--out", c)
     compare(r.work / "full2" / "checkpoint_000020.h5", c / "checkpoint_000020.h5", 1e-12)
+    # Driven turbulence (issue 16, acceptance 7): the stirring continues bitwise, its state
+    # (coefficients, strength, work so far) being in the checkpoint.
+    for ranks in (1, 2):
+        a, b = r.work / f"turb_full{ranks}", r.work / f"turb_restarted{ranks}"
+        r.run(ranks, "--init", "turbulence", *RUN, "--lattice", "-s", 20, "--checkpoint-every",
+              10, "--out", a)
+        r.run(ranks, "--restart", a / "checkpoint_000010.h5", "-s", 20, "--threads", 1,
+              "--checkpoint-every", 10, "--out", b)
+        compare(a / "checkpoint_000020.h5", b / "checkpoint_000020.h5", 0.0)
+        with h5py.File(a / "checkpoint_000020.h5") as fa, h5py.File(b / "checkpoint_000020.h5") as fb:
+            for key in ("stir_coeff", "stir_energy_in", "stir_accel_rms", "stir_t_corr"):
+                assert np.array_equal(fa.attrs[key], fb.attrs[key]), key
+            assert len(fa.attrs["stir_coeff"]) > 100 and float(fa.attrs["stir_energy_in"]) > 0
     # Changing physics on restart is refused.
     p = r.run(1, "--restart", r.work / "full1" / "checkpoint_000010.h5", "--ng0", 50, expect=2)
     assert "--ng0" in p.stderr, p.stderr

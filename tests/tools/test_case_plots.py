@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""tools/case_plots.py makes its four figures from short runs of their cases, prints the numbers
-they plot (the Gresho-Chan L1 of an untouched vortex is 0), and exits 2 with one line on a
-missing snapshot."""
+"""tools/case_plots.py makes its five figures from short runs of their cases, prints the
+numbers they plot (the Gresho-Chan L1 of an untouched vortex is 0), and exits 2 with one line
+on a missing snapshot."""
 import argparse
 import re
 import subprocess
@@ -41,6 +41,10 @@ def main():
         plot("slice", run_case(args.exe, "isobaric-cube", 8, w / "c", 2), w / "c.png")
         out = plot("wind", run_case(args.exe, "wind-cloud", 8, w / "w", 2), w / "w.png")
         assert "surviving fraction 1.000" in out, out  # two steps: the cloud is intact
+        out = plot("turb", run_case(args.exe, "turbulence", 12, w / "t", 40), w / "t.png")
+        mach = float(re.search(r"Mach_rms ([0-9.]+) at t", out).group(1))
+        assert 0 < mach < 0.1, f"40 steps of stirring from rest: Mach {mach}"
+        assert re.search(r"E\(k\) at t = [0-9.]+: k=1 ", out), out
         p = subprocess.run([sys.executable, PLOTS, "gresho", str(w / "missing.h5"), "-o",
                             str(w / "x.png")], capture_output=True, text=True)
         assert p.returncode == 2 and "no such file" in p.stderr, p.stderr

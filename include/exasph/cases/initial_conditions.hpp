@@ -22,6 +22,7 @@ struct InitialConditions {
     std::string units = "code units"; // unit system of all fields, written to outputs
     ExactDensity exact;               // the analytic density, when the case has one
     double G = 0.0;                   // gravitational constant; 0: no self-gravity
+    double stir_mach = 0.0;           // target Mach number of the stirring; 0: none
 };
 
 // Sets the state of slot s: id, position, velocity, x_{-1} = x - v dt0 (the Press scheme's

@@ -10,6 +10,7 @@
 #include "exasph/cases/noh.hpp"
 #include "exasph/cases/sedov.hpp"
 #include "exasph/cases/square_patch.hpp"
+#include "exasph/cases/turbulence.hpp"
 #include "exasph/cases/wind_cloud.hpp"
 
 namespace exasph {
@@ -20,7 +21,7 @@ inline const std::vector<const CaseInfo*>& case_registry() {
     static const std::vector<const CaseInfo*> cases{
         &square_patch_case(),     &sedov_case(),       &noh_case(),
         &evrard_case(),           &gresho_chan_case(), &isobaric_cube_case(),
-        &kelvin_helmholtz_case(), &wind_cloud_case(),
+        &kelvin_helmholtz_case(), &wind_cloud_case(),  &turbulence_case(),
     };
     return cases;
 }

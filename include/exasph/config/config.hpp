@@ -39,6 +39,8 @@ struct Config {
     double theta = 0.5;           // Barnes-Hut opening angle (SPEC 8)
     double accel_eps = 0.2;     // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)
     int gravity_leaf_size = 16; // gravity-tree leaf size: one interaction list per leaf
+    double stir_mach = -1.0;    // --stir-mach; < 0: the case's (0: no stirring)
+    int stir_seed = 1;          // --stir-seed: the stirring's random sequence
     SdcPolicy on_sdc = SdcPolicy::rollback; // silent data corruption
     int sdc_rollback_every = 10;            // steps between rollback points
     // Disk by default: the copy in memory would add ~112 B to the ~300 B a particle needs.

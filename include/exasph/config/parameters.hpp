@@ -108,6 +108,13 @@ inline const std::array kParameters{
     Param{"--gravity-leaf-size", "gravity_leaf_size", "Gravity tree leaf size: one interaction "
           "list per leaf (particles)", "", OnRestart::kept, &Config::gravity_leaf_size,
           in_range(1, 4096)},
+    Param{"--stir-mach", "stir_mach", "Driven turbulence: stir a periodic box with an "
+          "Ornstein-Uhlenbeck force on the largest scales (1 < |k| L / 2 pi < 3, solenoidal) "
+          "whose strength aims at this rms Mach number; 0 turns it off (default: the case's, "
+          "0.3 for turbulence, else off)", "", OnRestart::kept, &Config::stir_mach,
+          in_range(0, 10), false},
+    Param{"--stir-seed", "stir_seed", "Driven turbulence: seed of the stirring's random "
+          "sequence", "", OnRestart::kept, &Config::stir_seed, in_range(0, 2147483647)},
     // Decomposition
     Param{"--global-bucket", "global_bucket", "Global tree leaf size: the unit of MPI load "
           "balance (particles)", "", OnRestart::kept, &Config::global_bucket,

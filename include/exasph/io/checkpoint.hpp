@@ -42,7 +42,26 @@ std::uint64_t checkpoint_checksum(const ParticleSet<T>& ps, std::size_t n, const
     HashChain scalars(0x65786173706800ull);
     scalars.add_float(rs.time).add(std::uint64_t(rs.step)).add_float(rs.dt_m1).add_float(dt0);
     for (auto k : rs.leaf_keys) scalars.add(k);
+    if (!rs.stir.coeff.empty()) { // a run with stirring
+        scalars.add_float(rs.stir.accel_rms).add_float(rs.stir.t_corr);
+        scalars.add_float(rs.stir.energy_in);
+        for (double c : rs.stir.coeff) scalars.add_float(c);
+    }
     return sum + scalars.value();
+}
+
+// Driven turbulence: the stirring's state (sim/stirring.hpp) as root attributes.
+inline void write_stir_state(const h5::Group& root, const StirState& st) {
+    h5::write_attribute(root, "stir_accel_rms", st.accel_rms);
+    h5::write_attribute(root, "stir_t_corr", st.t_corr);
+    h5::write_attribute(root, "stir_energy_in", st.energy_in);
+    h5::write_attribute(root, "stir_coeff", st.coeff);
+}
+
+inline StirState read_stir_state(const h5::Group& root) {
+    auto num = [&](const char* name) { return h5::read_attribute_doubles(root, name).at(0); };
+    return {num("stir_accel_rms"), num("stir_t_corr"), num("stir_energy_in"),
+            h5::read_attribute_doubles(root, "stir_coeff")};
 }
 
 // Test hook for the crash-safety test: with EXASPH_TEST_CHECKPOINT_STALL=STEP set, the checkpoint
@@ -89,6 +108,7 @@ std::string write_checkpoint(const OutputState<T>& run, const Config& cfg, const
         h5::write_attribute(root, "step", std::int64_t(rs.step));
         h5::write_attribute(root, "dt_m1", rs.dt_m1);
         h5::write_attribute(root, "dt0", run.dt0);
+        if (!rs.stir.coeff.empty()) write_stir_state(root, rs.stir);
         h5::Group state(file, "/state", true);
         const auto fields = run.particles.fields(kState); // the optional ones the run carries
         const std::vector<Field> first(fields.begin(), fields.begin() + fields.size() / 2);
@@ -146,6 +166,7 @@ Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm com
     cp.rs.time = num("time");
     cp.rs.step = std::int64_t(num("step"));
     cp.rs.dt_m1 = num("dt_m1");
+    if (h5::has_attribute(root, "stir_coeff")) cp.rs.stir = read_stir_state(root);
     h5::Group state(file, "/state", false);
     // Optional state fields (Tait reference state, alpha, X) are in the file when the run
     // carried them; reading one enables it.

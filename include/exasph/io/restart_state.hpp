@@ -4,6 +4,14 @@
 
 namespace exasph {
 
+// The stirring of driven turbulence (sim/stirring.hpp) where a run stands: its strength, its
+// correlation time, the energy it has put in so far and its Fourier coefficients. Empty
+// (coeff.size() == 0) for a run without stirring.
+struct StirState {
+    double accel_rms = 0, t_corr = 0, energy_in = 0;
+    std::vector<double> coeff;
+};
+
 // Where a run stands besides its particles: with these and the particles' state fields a run
 // continues exactly (bitwise on the same rank count). Checkpoints and rollback points hold it.
 struct RestartState {
@@ -11,6 +19,7 @@ struct RestartState {
     std::int64_t step = 0;
     double dt_m1 = 0;
     std::vector<std::uint64_t> leaf_keys; // global tree
+    StirState stir;
 };
 
 } // namespace exasph

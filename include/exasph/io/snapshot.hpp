@@ -54,6 +54,8 @@ inline std::string optional_field_needs(Field f) {
         return "only with --volume-elements";
     case Field::phi:
         return "only with self-gravity";
+    case Field::stir:
+        return "only with stirring (--stir-mach)";
     case Field::rho0:
     case Field::p0:
         return "only with the Tait EOS";

@@ -74,6 +74,7 @@ class RunDriver {
         sim_ = std::move(start.sim);
         units_ = start.units;
         cfg_.G = sim_->gravitational_constant(); // outputs record the G the run uses
+        cfg_.stir_mach = sim_->stir_mach();      // and the stirring
         fields_ = run_snapshot_fields(cfg_, sim_->particles());
         t_end_ = cfg_.t_end > 0 ? cfg_.t_end : (cfg_.steps < 0 ? start.case_t_end : -1.0);
         if (t_end_ <= 0 && cfg_.steps < 0)

@@ -28,11 +28,14 @@ struct Diagnostics {
     // gross rate at which energy moves between forms), sum_a m_a (|v_a| + c_a) (momentum and the
     // scale of the pressure forces' impulses) and sum_a m_a |a_a|.
     double mass = 0, power_abs = 0, momentum_abs = 0, force_abs = 0;
+    // Driven turbulence: sum_a m_a v_a . a_stir,a (the stirring's power) and the energy it has
+    // put in since the start of the run (etot - e_stir is conserved).
+    double stir_power = 0, e_stir = 0;
 };
 
-// Layout of the diagnostics reduction: SumMax elements 0..16 below, then six for the extent of
+// Layout of the diagnostics reduction: SumMax elements 0..17 below, then six for the extent of
 // the positions (which gives next step's box without another collective).
-inline constexpr std::size_t kDiagElements = 17;
+inline constexpr std::size_t kDiagElements = 18;
 inline constexpr std::size_t kDiagWithExtent = kDiagElements + 6;
 
 // This rank's contribution over its owned particles [0, n_owned); sums are independent of the
@@ -47,9 +50,10 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     const T *m = ps.data(Field::m), *u = ps.data(Field::u);
     const float *nc = ps.narrow(Field::nc), *cs = ps.narrow(Field::c);
     const T* phi = ps.data(Field::phi);
+    const T* stir = ps.enabled(Field::stir) ? ps.data(Field::stir) : nullptr;
     const T *ax = ps.data(Field::ax), *ay = ps.data(Field::ay), *az = ps.data(Field::az),
             *du = ps.data(Field::du);
-    auto s = block_sum<14>(n_owned, [&](std::size_t i) -> std::array<double, 14> {
+    auto s = block_sum<15>(n_owned, [&](std::size_t i) -> std::array<double, 15> {
         const double mi = m[i];
         const double v2 = double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i];
         const double va = double(vx[i]) * ax[i] + double(vy[i]) * ay[i] + double(vz[i]) * az[i];
@@ -67,7 +71,8 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
                 mi,
                 mi * (std::abs(va) + std::abs(double(du[i]))),
                 mi * (std::sqrt(v2) + double(cs[i])),
-                mi * std::sqrt(a2)};
+                mi * std::sqrt(a2),
+                stir ? mi * stir[i] : 0.0};
     });
     double nc_lo = std::numeric_limits<double>::infinity(), nc_hi = -nc_lo;
     for (std::size_t i = 0; i < n_owned; ++i) {
@@ -92,7 +97,7 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     }
     out[11] = {l1, rho_max};
     out[12] = {s[9], -std::numeric_limits<double>::infinity()};
-    for (int k = 0; k < 4; ++k) out[13 + k] = {s[10 + k], -std::numeric_limits<double>::infinity()};
+    for (int k = 0; k < 5; ++k) out[13 + k] = {s[10 + k], -std::numeric_limits<double>::infinity()};
 }
 
 inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
@@ -104,6 +109,7 @@ inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
     d.power_abs = e[14].sum;
     d.momentum_abs = e[15].sum;
     d.force_abs = e[16].sum;
+    d.stir_power = e[17].sum;
     d.etot = d.ekin + d.eint + d.epot;
     d.momentum = {e[2].sum, e[3].sum, e[4].sum};
     d.angular_momentum = {e[5].sum, e[6].sum, e[7].sum};

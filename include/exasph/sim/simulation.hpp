@@ -15,18 +15,17 @@
 #include "exasph/io/output_state.hpp"
 #include "exasph/io/restart_state.hpp"
 #include "exasph/kernel/sinc_kernel.hpp"
+#include "exasph/sim/control_flags.hpp"
 #include "exasph/sim/diagnostics.hpp"
 #include "exasph/sim/initial_potential.hpp"
 #include "exasph/sim/phases.hpp"
 #include "exasph/sim/safety.hpp"
+#include "exasph/sim/stirring.hpp"
 #include "exasph/sph/passes.hpp"
 #include "exasph/tree/neighbour_lists.hpp"
 #include "exasph/util/timer.hpp"
 
 namespace exasph {
-
-// Run-control flags every rank learns at the end of a step through the diagnostics collective.
-enum ControlFlag : std::size_t { kStopRequested, kCheckpointByClock, kNumControlFlags };
 
 // One SPH simulation: the step pipeline of docs/architecture.md, each phase timed. Runs on any
 // number of MPI ranks of `comm` (one rank included); results do not depend on ranks or threads
@@ -50,6 +49,10 @@ class Simulation {
         start_gravity(cfg.G >= 0 ? cfg.G : ic.G);
         restart ? resume(*restart) : start();
         diagnose(0.0);
+        stirring_ =
+            start_stirring(box_, eos_, diag_, cfg.stir_mach >= 0 ? cfg.stir_mach : ic.stir_mach,
+                           std::uint64_t(cfg.stir_seed), restart);
+        if (stirring_) ps_.enable(Field::stir), diag_.e_stir = stirring_->state().energy_in;
         if (gravity_) add_initial_potential_energy(comm);
         mass0_ = diag_.mass;
         safety_.seal(ps_, n_owned());
@@ -73,13 +76,15 @@ class Simulation {
         if (gravity_)
             gravity_->compute(ps_, n_owned(), domain_.assignment(), box_, domain_.curve(),
                               domain_.collectives());
+        if (stirring_) add_stirring<L>(ps_, n_owned(), stirring_->modes());
         timer_.stop(kGravity);
         const double dt = choose_time_step();
         timer_.stop(kTimeStep);
         advance(dt);
         const Diagnostics before = diag_;
         diagnose(dt);
-        if (!safety_.conserved_after(ps_, n_owned(), before, diag_, mass0_, !gravity_))
+        if (!safety_.conserved_after(ps_, n_owned(), before, diag_, mass0_,
+                                     !gravity_ && !stirring_))
             return roll_back("the conservation watchdog after step " + std::to_string(step_),
                              step_);
         timer_.stop(kDiagnostics);
@@ -96,11 +101,12 @@ class Simulation {
     std::int64_t sdc_detection_step() const { return safety_.detection_step(); }
 
     // Raises a control flag on this rank; after the next step every rank sees it (flag()).
-    void raise_flag(ControlFlag f) { local_flags_[f] = 1.0; }
-    bool flag(ControlFlag f) const { return flags_[f] > 0; }
+    void raise_flag(ControlFlag f) { flags_.raise(f); }
+    bool flag(ControlFlag f) const { return flags_[f]; }
 
     RestartState restart_state() const {
-        return {time_, step_, dt_m1_, domain_.global_tree().keys()};
+        return {time_, step_, dt_m1_, domain_.global_tree().keys(),
+                stirring_ ? stirring_->state() : StirState{}};
     }
     // What snapshots and checkpoints read (io/output_state.hpp).
     OutputState<T> output_state() const {
@@ -109,6 +115,8 @@ class Simulation {
     const EosParams& eos() const { return eos_; }
     // Gravitational constant of the run (0: no self-gravity).
     double gravitational_constant() const { return gravity_ ? gravity_->G() : 0.0; }
+    // Target Mach number of the stirring (0: none).
+    double stir_mach() const { return stirring_ ? stirring_->mach() : 0.0; }
     double dt0() const { return dt0_; }
 
     // Steps are shortened so that the run ends exactly at t_end.
@@ -166,6 +174,7 @@ class Simulation {
         step_ = rs.step;
         dt_m1_ = rs.dt_m1;
         domain_.restore(ps_, rs.leaf_keys);
+        if (stirring_) stirring_->restore(rs.stir);
     }
 
     void find_neighbours() {
@@ -190,8 +199,9 @@ class Simulation {
         compute_iad<L>(ps_, nlists_, box_, k, cfg_.av_limiter);
         domain_.exchange_halos(ps_, cfg_.av_limiter ? kHaloIad | kHaloGrad : kHaloIad);
         timer_.stop(kIad);
-        courant_dt_ =
-            compute_momentum_energy<L>(ps_, nlists_, box_, k, dissipation(), T(cfg_.courant));
+        const auto diss =
+            Dissipation<T>::of(cfg_.alpha, cfg_.conductivity, cfg_.av_limiter, cfg_.ng0);
+        courant_dt_ = compute_momentum_energy<L>(ps_, nlists_, box_, k, diss, T(cfg_.courant));
         nlists_.release(); // not needed again this step: the sync can use their memory
         timer_.stop(kMomentumEnergy);
     }
@@ -217,20 +227,11 @@ class Simulation {
         timer_.stop(kUpdate);
         update_smoothing_lengths<L>(ps_, n_owned(), cfg_.ng0);
         if (cfg_.volume_elements) update_volume_weights<L>(ps_, n_owned());
+        if (stirring_) stirring_->advance(step_, dt);
         timer_.stop(kSmoothingLength);
         time_ += dt;
         dt_m1_ = dt;
         ++step_;
-    }
-
-    Dissipation<T> dissipation() const {
-        Dissipation<T> d;
-        d.alpha = T(cfg_.alpha);
-        d.alpha_u = T(cfg_.conductivity);
-        d.reconstruct = cfg_.av_limiter;
-        // About the mean particle spacing in units of h: (4/3 pi (2h)^3 / ng0)^(1/3) / h.
-        d.eta_crit = T(std::cbrt(32.0 * std::numbers::pi / (3.0 * cfg_.ng0)));
-        return d;
     }
 
     RunPoint<T> run_point() const { return {restart_state(), box_, diag_}; }
@@ -260,18 +261,16 @@ class Simulation {
         std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags);
         local_diagnostics(ps_, n_owned(), domain_.n_halo(), exact_, time_ - dt, e.data());
         Domain<T>::local_extent(ps_, n_owned(), e.data() + kDiagElements);
-        for (std::size_t f = 0; f < kNumControlFlags; ++f)
-            e[kDiagWithExtent + f] = {0.0, local_flags_[f]};
+        flags_.pack(e.data() + kDiagWithExtent);
         domain_.collectives().allreduce_sum_max(e);
-        for (std::size_t f = 0; f < kNumControlFlags; ++f) {
-            flags_[f] = e[kDiagWithExtent + f].max;
-            local_flags_[f] = 0.0;
-        }
+        flags_.unpack(e.data() + kDiagWithExtent);
         diag_ = diagnostics_from(e.data(), domain_.nranks());
         if (exact_.valid() && step_ > 0) diag_.l1_rho = e[11].sum / double(diag_.n);
         diag_.step = step_;
         diag_.time = time_;
         diag_.dt = dt;
+        if (stirring_) stirring_->add_energy(dt * diag_.stir_power);
+        diag_.e_stir = stirring_ ? stirring_->state().energy_in : 0.0;
         Domain<T>::apply_extent(box_, e.data() + kDiagElements);
     }
 
@@ -291,9 +290,10 @@ class Simulation {
     std::int64_t step_ = 0;
     std::uint32_t max_list_ = 0;
     bool recovered_ = false;
-    std::array<double, kNumControlFlags> local_flags_{}, flags_{};
+    ControlFlags flags_;
     ExactDensity exact_;
     std::optional<GravitySolver<T>> gravity_;
+    std::optional<Stirring> stirring_;
 };
 
 } // namespace exasph

@@ -1,6 +1,7 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
@@ -25,6 +26,12 @@ struct Dissipation {
     bool reconstruct = false; // viscosity from velocities reconstructed to the pair midpoint
     T eta_crit = T(0);        // pairs closer than eta_crit max(h_a, h_b) fade the reconstruction
     T alpha = T(1);           // the AV coefficient where particles carry none (no AV switch)
+
+    static Dissipation of(double alpha, double alpha_u, bool reconstruct, double ng0) {
+        // eta_crit: about the mean particle spacing in units of h, (4/3 pi (2h)^3 / ng0)^(1/3) / h.
+        return {T(alpha_u), reconstruct, T(std::cbrt(32.0 * std::numbers::pi / (3.0 * ng0))),
+                T(alpha)};
+    }
 };
 
 // v_ab with both velocities reconstructed linearly to the pair midpoint (Rosswog 2015):

@@ -9,6 +9,7 @@
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/launch.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/sph/stir_kern.hpp"
 #include "exasph/sph/update_kern.hpp"
 #include "exasph/tree/neighbour_lists.hpp"
 #include "exasph/util/error.hpp"
@@ -85,6 +86,12 @@ void update_viscosity(ParticleSet<T>& ps, std::size_t n, double dt, double alpha
 }
 
 // Volume elements for the next step (VolumeWeightKernel).
+// The stirring force of driven turbulence, added to the acceleration (sph/stir_kern.hpp).
+template <class L = DefaultLauncher, class T>
+void add_stirring(ParticleSet<T>& ps, std::size_t n, const StirModes& modes) {
+    L::for_each(n, StirKernel<T>{make_view(ps), modes});
+}
+
 template <class L = DefaultLauncher, class T>
 void update_volume_weights(ParticleSet<T>& ps, std::size_t n) {
     L::for_each(n, VolumeWeightKernel<T>{make_view(ps)});

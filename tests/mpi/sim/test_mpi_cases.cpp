@@ -3,7 +3,8 @@
 // collapse with self-gravity, accelerations and potentials included. "noh-limiter" is Noh with
 // the options of its acceptance test (limited viscosity, whose velocity gradients cross ranks as
 // halo fields; volume elements; conductivity). Issue 16, acceptance 8: the new cases with their
-// default scheme (ve): gresho-chan, isobaric-cube, kelvin-helmholtz, wind-cloud.
+// default scheme (ve): gresho-chan, isobaric-cube, kelvin-helmholtz, wind-cloud, turbulence (the
+// stirring: every rank draws the same modes).
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -24,7 +25,8 @@ class MpiCases : public ::testing::TestWithParam<const char*> {};
 TEST_P(MpiCases, MatchOneRank) {
     const std::string name = GetParam();
     const bool new_case = name == "gresho-chan" || name == "isobaric-cube" ||
-                          name == "kelvin-helmholtz" || name == "wind-cloud";
+                          name == "kelvin-helmholtz" || name == "wind-cloud" ||
+                          name == "turbulence";
     Config cfg = new_case ? case_config(name, 16) : Config{};
     cfg.init = name;
     if (cfg.init == "noh-limiter") {
@@ -66,4 +68,5 @@ TEST_P(MpiCases, MatchOneRank) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, MpiCases,
                          ::testing::Values("sedov", "noh", "noh-limiter", "evrard", "gresho-chan",
-                                           "isobaric-cube", "kelvin-helmholtz", "wind-cloud"));
+                                           "isobaric-cube", "kelvin-helmholtz", "wind-cloud",
+                                           "turbulence"));
