@@ -1,5 +1,8 @@
 #pragma once
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -16,15 +19,10 @@ class ExactDensity {
     static ExactDensity sedov(double gamma, double energy, double rho1) {
         ExactDensity e;
         e.kind_ = Kind::sedov;
-        SedovSolution s(gamma);
-        e.xi0_ = s.xi0();
+        e.xi0_ = SedovSolution(gamma).xi0();
         e.energy_ = energy;
         e.rho1_ = rho1;
-        e.table_.resize(kTable + 1);
-        for (int i = 0; i <= kTable; ++i) {
-            double xi = double(i) / kTable;
-            e.table_[i] = i == 0 ? 0.0 : s.density_ratio(s.v_of_xi(xi));
-        }
+        e.table_ = sedov_table(gamma);
         return e;
     }
     static ExactDensity noh(double gamma, double rho0, double v0) {
@@ -45,7 +43,8 @@ class ExactDensity {
         const double s = xi * kTable;
         const int i = int(s);
         const double f = s - i;
-        return rho1_ * (table_[i] + f * (table_[i + 1] - table_[i]));
+        const std::vector<double>& g = *table_;
+        return rho1_ * (g[i] + f * (g[i + 1] - g[i]));
     }
 
   private:
@@ -53,8 +52,23 @@ class ExactDensity {
     static constexpr int kTable = 20000;
     Kind kind_ = Kind::none;
     double xi0_ = 0, energy_ = 0, rho1_ = 1;
-    std::vector<double> table_;
+    std::shared_ptr<const std::vector<double>> table_;
     NohSolution noh_;
+
+    // G(xi) depends on gamma only; a table takes ~0.1 s to make (20k root solves), which runs
+    // that build many simulations (the fault-injection test: 600) paid each time. Made once
+    // per gamma per process.
+    static std::shared_ptr<const std::vector<double>> sedov_table(double gamma) {
+        static std::mutex lock;
+        static std::map<double, std::shared_ptr<const std::vector<double>>> made;
+        const std::lock_guard<std::mutex> guard(lock);
+        auto& table = made[gamma];
+        if (table) return table;
+        const SedovSolution s(gamma);
+        auto g = std::make_shared<std::vector<double>>(kTable + 1, 0.0);
+        for (int i = 1; i <= kTable; ++i) (*g)[i] = s.density_ratio(s.v_of_xi(double(i) / kTable));
+        return table = g;
+    }
 };
 
 } // namespace exasph
