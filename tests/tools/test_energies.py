@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """tools/energies.py writes a non-trivial PNG from the diagnostics of an Evrard run (the
 potential energy column is filled, the snapshot carries phi) and exits 2 with a clear message on
-a missing or malformed file."""
+a missing or malformed file. tools/evrard.py puts the run beside the reference data
+(../shared/reference/evrard) and prints the 1D computation's numbers."""
 import argparse
 import subprocess
 import sys
@@ -9,6 +10,24 @@ import tempfile
 from pathlib import Path
 
 ENERGIES = Path(__file__).resolve().parents[2] / "tools" / "energies.py"
+EVRARD = ENERGIES.parent / "evrard.py"
+
+
+def check_evrard(run, w):
+    p = subprocess.run([sys.executable, EVRARD, run, "-o", w / "ev"], capture_output=True,
+                       text=True)
+    assert p.returncode == 0, p.stderr
+    one_d = "1D: E_kin peak 0.450, E_pot min -2.542, E_int peak 1.759, shock at t = 0.77: 0.126"
+    assert one_d in p.stdout, p.stdout
+    assert "run: E_kin peak" in p.stdout, p.stdout
+    for suffix in ("energies", "profiles"):
+        png = w / f"ev_{suffix}.png"
+        assert png.exists() and png.stat().st_size > 20000, (png, png.stat().st_size)
+    p = subprocess.run([sys.executable, EVRARD, run, "--reference", w / "nowhere"],
+                       capture_output=True, text=True)
+    assert p.returncode == 2 and "no such file" in p.stderr, p.stderr
+    assert len(p.stderr.strip().splitlines()) == 1, p.stderr
+    print(f"evrard.py: {one_d}; exit 2 without the reference data")
 
 
 def main():
@@ -33,6 +52,7 @@ def main():
         assert "% of |E_pot(0)|" in p.stdout, p.stdout
         assert png.exists() and png.stat().st_size > 20000, png.stat().st_size
         print(p.stdout.strip())
+        check_evrard(w / "run", w)
         bad = w / "bad.csv"
         bad.write_text("a,b\n1,2\n3,4\n")
         for path, needle in ((w / "missing.csv", "no such file"), (bad, "needs the columns")):
@@ -41,7 +61,7 @@ def main():
             assert p.returncode == 2, (path, p.returncode, p.stderr)
             assert needle in p.stderr and len(p.stderr.strip().splitlines()) == 1, p.stderr
             print(f"{path.name}: exit 2: {p.stderr.strip()}")
-    print("energies: passed")
+    print("energies, evrard: passed")
     return 0
 
 
