@@ -1,9 +1,10 @@
 // Issue 8, acceptance 1 and 2: clean runs raise no alarm; single-bit flips injected into x, v, u,
-// h, m of Sedov -n 16 (4096 particles, lattice; -n 20 until issue 16 trimmed CI) are detected, and with rollback the run ends
-// bitwise equal to the clean run. A flip is "harmful" when, undetected (--on-sdc off), it changes
-// some particle's final rho, v or u by more than 1e-3 (v relative to the largest speed) or the
-// total mass, energy or momentum by more than 1e-6 relative, or it crashes the run.
-// Set EXASPH_SDC_CSV=FILE to keep one row per injection (docs/resilience.md is made from it).
+// h, m of Sedov -n 16 (4096 particles, lattice; -n 20 until issue 16 trimmed CI) are detected, and
+// with rollback the run ends bitwise equal to the clean run. A flip is "harmful" when, undetected
+// (--on-sdc off), it changes some particle's final rho, v or u by more than 1e-3 (v relative to the
+// largest speed) or the total mass, energy or momentum by more than 1e-6 relative, or it crashes
+// the run. Set EXASPH_SDC_CSV=FILE to keep one row per injection (docs/resilience.md is made from
+// it).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
