@@ -85,9 +85,9 @@ InitialConditions<T> make_square_patch(const SquarePatchParams& sp, int rank = 0
 }
 
 inline const CaseInfo& square_patch_case() {
-    // The paper's own test of its formulation: it runs with the std scheme by default.
+    // The paper's test of tensile instability: the wc scheme (config/scheme.hpp) by default.
     static const CaseInfo info = with_scheme(
-        Scheme::std_sph,
+        Scheme::wc,
         case_info<SquarePatchParams>(
             "square-patch", "Rotating square patch (SPEC 9.1), weakly compressible water, CGS",
             false,

@@ -10,7 +10,7 @@ namespace exasph {
 // Closed choices of the command line (their names: config/choices.hpp).
 enum class SdcPolicy { rollback, abort, off }; // --on-sdc
 enum class RollbackStore { disk, memory };     // --sdc-rollback-store
-enum class Scheme { std_sph, ve };             // --scheme (config/scheme.hpp)
+enum class Scheme { std_sph, ve, wc };         // --scheme (config/scheme.hpp)
 
 // Everything a run is configured with. Each member that the command line sets is declared
 // once more, with its flag, help, unit and restart rule, in the parameter table
@@ -35,6 +35,8 @@ struct Config {
     double conductivity = 0.0;    // artificial conductivity alpha_u (0: off)
     bool av_limiter = false;      // viscosity from limited midpoint-reconstructed velocities
     bool volume_elements = false; // generalised volume elements X = (m/rho)^0.7
+    double tensile_stress = 0.0;  // artificial stress for negative pressures (Monaghan 2000)
+    bool torque_free = false;     // pair forces without net torque (angular momentum)
     double G = -1.0;              // gravitational constant (--G); < 0: the case's (0: no gravity)
     double theta = 0.5;           // Barnes-Hut opening angle (SPEC 8)
     double accel_eps = 0.2;     // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)

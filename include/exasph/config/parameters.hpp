@@ -68,10 +68,12 @@ inline const std::array kParameters{
           OnRestart::initial, &Config::lattice},
     // Physics
     Param{"--scheme", "scheme", "Formulation: std (the paper's: standard SPH volumes, alpha "
-          "viscosity on every approaching pair, no conductivity) or ve (generalised volume "
-          "elements, slope-limited viscosity, conductivity 1: the recommended one); options "
-          "given beside it override its values (default: the case's scheme, std for "
-          "square-patch, ve for the others and for files)", "", OnRestart::kept,
+          "viscosity on every approaching pair, no conductivity), ve (generalised volume "
+          "elements, slope-limited viscosity, conductivity 1: the recommended one) or wc (std "
+          "with artificial stress 0.2, for weakly compressible liquids under tension); options "
+          "given beside it override its values (default: "
+          "the case's scheme, wc for square-patch, ve for the others and for files)", "",
+          OnRestart::kept,
           &Config::scheme, {}, false},
     Param{"--ng0", "ng0", "Target number of neighbours", "", OnRestart::kept, &Config::ng0,
           in_range(10, 1000)},
@@ -98,6 +100,16 @@ inline const std::array kParameters{
     Param{"--volume-elements", "volume_elements", "Generalised volume elements X = (m/rho)^0.7 "
           "instead of standard SPH volumes (on in the ve scheme)", "", OnRestart::kept,
           &Config::volume_elements},
+    Param{"--tensile-stress", "tensile_stress", "Artificial stress against the tensile "
+          "instability (Monaghan 2000): pairs of particles under negative pressure repel with "
+          "eps |P|/rho^2 (W(r)/W(dp))^4; acts only where P < 0 (weakly compressible fluids); 0 "
+          "is off (set by --scheme: 0.2 wc, else 0)", "", OnRestart::kept,
+          &Config::tensile_stress, in_range(0, 1)},
+    Param{"--torque-free", "torque_free", "Pressure and viscous pair forces that exert no "
+          "net torque (angular momentum conserved to the precision of the stored IAD matrix "
+          "when the artificial stress is off): the IAD matrix from the pressure term's own "
+          "weights X_b/k_a, and artificial viscosity along the pair axis", "",
+          OnRestart::kept, &Config::torque_free},
     Param{"--G", "G", "Gravitational constant: self-gravity on the tree (SPEC 8) for any case in "
           "an open box; 0 turns it off (default: the case's, 1 for evrard, else off)",
           "code units", OnRestart::kept, &Config::G, in_range(0, 1e300), false},

@@ -196,11 +196,11 @@ class Simulation {
         timer_.stop(kDensity);
         domain_.exchange_halos(ps_, kHaloDensity);
         timer_.stop(kDensityHalos);
-        compute_iad<L>(ps_, nlists_, box_, k, cfg_.av_limiter);
+        compute_iad<L>(ps_, nlists_, box_, k, cfg_.av_limiter, cfg_.torque_free);
         domain_.exchange_halos(ps_, cfg_.av_limiter ? kHaloIad | kHaloGrad : kHaloIad);
         timer_.stop(kIad);
-        const auto diss =
-            Dissipation<T>::of(cfg_.alpha, cfg_.conductivity, cfg_.av_limiter, cfg_.ng0);
+        const auto diss = Dissipation<T>::of(cfg_.alpha, cfg_.conductivity, cfg_.av_limiter,
+                                             cfg_.ng0, cfg_.tensile_stress, cfg_.torque_free);
         courant_dt_ = compute_momentum_energy<L>(ps_, nlists_, box_, k, diss, T(cfg_.courant));
         nlists_.release(); // not needed again this step: the sync can use their memory
         timer_.stop(kMomentumEnergy);

@@ -59,10 +59,13 @@ EXASPH_HD VelocityGradient<T> velocity_gradient(const T (&d)[9], const IadResult
 // tau_a = sum_b V_b (x_b - x_a) (x) (x_b - x_a) W_ab(h_a), C_a = tau_a^{-1}.
 // With a non-null `grad`, the same pass also yields the velocity gradient (velocity_gradient).
 // `kx`: k_b, the volume-element field, or rho_b (single precision, is_narrow) for standard SPH.
+// `own_k` (--torque-free): V_b = X_b / k_a, the weights of particle a's pressure term in the
+// momentum equation (X_b P_a/(Om_a k_a^2) C_a d W), so that sum_b X_b d x (C_a d) W vanishes with
+// C_a tau_a = I: the IAD pressure forces exert no net torque. Still exact for linear fields.
 template <class T, class K>
 EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
                                      const Box<T>& box, const KernelView<T>& k,
-                                     VelocityGradient<T>* grad, const K* kx) {
+                                     VelocityGradient<T>* grad, const K* kx, bool own_k) {
     const T* x = p[Field::x];
     const T* y = p[Field::y];
     const T* z = p[Field::z];
@@ -81,7 +84,8 @@ EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const Pa
         dx = image(x[b] - x[a], 0);
         dy = image(y[b] - y[a], 1);
         dz = image(z[b] - z[a], 2);
-        return xm[b] / T(kx[b]) * k.value(std::sqrt(dx * dx + dy * dy + dz * dz) * inv_h);
+        return xm[b] / T(kx[own_k ? a : b]) *
+               k.value(std::sqrt(dx * dx + dy * dy + dz * dz) * inv_h);
     };
 #pragma omp simd reduction(+ : t11, t12, t13, t22, t23, t33)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
@@ -120,9 +124,9 @@ EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const Pa
 template <class T>
 EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
                                 const Box<T>& box, const KernelView<T>& k,
-                                VelocityGradient<T>* grad = nullptr) {
-    return p[Field::kx] ? iad_kern_with(a, nb, p, box, k, grad, p[Field::kx])
-                        : iad_kern_with(a, nb, p, box, k, grad, p.narrow(Field::rho));
+                                VelocityGradient<T>* grad = nullptr, bool own_k = false) {
+    return p[Field::kx] ? iad_kern_with(a, nb, p, box, k, grad, p[Field::kx], own_k)
+                        : iad_kern_with(a, nb, p, box, k, grad, p.narrow(Field::rho), own_k);
 }
 
 // The IAD pass of one particle: C_a stored in single precision (is_narrow), with
@@ -135,10 +139,11 @@ struct IadKernel {
     Box<T> box;
     KernelView<T> k;
     bool with_gradient = false;
+    bool own_k = false; // --torque-free
 
     EXASPH_HD double operator()(std::uint32_t i, NeighbourSpan nb) const {
         VelocityGradient<T> g;
-        auto r = iad_kern(i, nb, p, box, k, with_gradient ? &g : nullptr);
+        auto r = iad_kern(i, nb, p, box, k, with_gradient ? &g : nullptr, own_k);
         if (with_gradient)
             for (int c = 0; c < 9; ++c) p[velocity_gradient_field(c)][i] = g.g[c];
         p.narrow(Field::c11)[i] = float(r.c11);

@@ -26,12 +26,16 @@ struct Dissipation {
     bool reconstruct = false; // viscosity from velocities reconstructed to the pair midpoint
     T eta_crit = T(0);        // pairs closer than eta_crit max(h_a, h_b) fade the reconstruction
     T alpha = T(1);           // the AV coefficient where particles carry none (no AV switch)
+    T tensile = T(0);         // artificial stress coefficient eps (0: off)
+    bool central = false;     // viscosity and stress along the pair axis (--torque-free)
 
-    static Dissipation of(double alpha, double alpha_u, bool reconstruct, double ng0) {
+    static Dissipation of(double alpha, double alpha_u, bool reconstruct, double ng0,
+                          double tensile = 0, bool central = false) {
         // eta_crit: about the mean particle spacing in units of h, (4/3 pi (2h)^3 / ng0)^(1/3) / h.
         return {T(alpha_u), reconstruct, T(std::cbrt(32.0 * std::numbers::pi / (3.0 * ng0))),
-                T(alpha)};
+                T(alpha),   T(tensile),  central};
     }
+    bool any_extra() const { return reconstruct || alpha_u > T(0) || tensile > T(0) || central; }
 };
 
 // v_ab with both velocities reconstructed linearly to the pair midpoint (Rosswog 2015):
@@ -65,6 +69,18 @@ EXASPH_HD T reconstructed_approach(T vabx, T vaby, T vabz, T dx, T dy, T dz, con
     T hz = T(0.5) * phi * (gad[2] + gbd[2]);
     // v~_ab . r_ab with r_ab = -d
     return -((vabx + hx) * dx + (vaby + hy) * dy + (vabz + hz) * dz);
+}
+
+// The component of g along the pair axis d, (g . d) d / r^2: a pair force along it is central
+// (exerts no torque), which IAD's C_a d W is not.
+template <class T>
+struct Vec3 {
+    T x, y, z;
+};
+template <class T>
+EXASPH_HD EXASPH_INLINE Vec3<T> along_axis(T gx, T gy, T gz, T dx, T dy, T dz, T inv_r2) {
+    const T s = (gx * dx + gy * dy + gz * dz) * inv_r2;
+    return {s * dx, s * dy, s * dz};
 }
 
 // C (x) d for the symmetric IAD matrix of particle i.
@@ -119,12 +135,21 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
     const T xa_ma = kVolumeElements ? xm[a] / m[a] : T(1);
     const T pa = T(pgrad[a]) * xa_ma;
     T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0, divv = 0, du_cond = 0;
+    // Artificial stress (Monaghan 2000) against the tensile instability: where P < 0, the
+    // pressure coefficient of a pair gains R = eps |P/(Om k^2)| f_ab^4, f_ab = W(r)/W(dp) with dp
+    // the mean particle spacing (eta_crit h), so close pairs under tension repel. R enters both
+    // members' terms as P does, so momentum stays conserved, and du/dt takes R's work.
+    const T eps_ts = kExtras ? diss.tensile : T(0);
+    const T ra = pa < T(0) ? -eps_ts * pa : T(0);
+    const T inv_w0 = eps_ts > T(0) ? T(1) / k.value(diss.eta_crit) : T(0);
+    T du_ts = 0;
     const T* u = p[Field::u];
     T ga[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     if (diss.reconstruct)
         for (int g = 0; g < 9; ++g) ga[g] = p[velocity_gradient_field(g)][a];
     const PeriodicImage<T> image(box);
-#pragma omp simd reduction(+ : ax, ay, az, du_p, du_av, divv, du_cond) reduction(max : vsig_max)
+#pragma omp simd reduction(+ : ax, ay, az, du_p, du_av, divv, du_cond, du_ts) \
+    reduction(max : vsig_max)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         const std::uint32_t b = nb[n];
         // d = x_b - x_a = -r_ab
@@ -133,8 +158,9 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
         T dz = image(z[b] - z[a], 2);
         T r = std::sqrt(dx * dx + dy * dy + dz * dz);
         T hb = h[b], inv_hb = T(1) / hb;
-        T wa = k.value(r * inv_ha) * inv_ha3;
-        T wb = k.value(r * inv_hb) * inv_hb * inv_hb * inv_hb;
+        T kwa = k.value(r * inv_ha), kwb = k.value(r * inv_hb);
+        T wa = kwa * inv_ha3;
+        T wb = kwb * inv_hb * inv_hb * inv_hb;
         IadProduct<T> ca = iad_times(p, a, dx, dy, dz);
         IadProduct<T> cb = iad_times(p, b, dx, dy, dz);
         T aax = ca.x * wa, aay = ca.y * wa, aaz = ca.z * wa; // A_ab(h_a)
@@ -171,13 +197,28 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
         T gx = aax * inv_rho_a + abx * inv_rho_b; // A(h_a)/rho_a + A(h_b)/rho_b
         T gy = aay * inv_rho_a + aby * inv_rho_b;
         T gz = aaz * inv_rho_a + abz * inv_rho_b;
+        if (kExtras && diss.central) { // --torque-free: viscosity along the pair axis
+            const Vec3<T> g = along_axis(gx, gy, gz, dx, dy, dz, r > T(0) ? T(1) / (r * r) : T(0));
+            gx = g.x, gy = g.y, gz = g.z;
+        }
         T half_pi = T(0.5) * pi_ab;
         T xb = kVolumeElements ? xm[b] : mb;
-        ax -= xb * (pa * aax + pb * abx) + mb * half_pi * gx;
-        ay -= xb * (pa * aay + pb * aby) + mb * half_pi * gy;
-        az -= xb * (pa * aaz + pb * abz) + mb * half_pi * gz;
+        // The stress's pair coefficients f_ab^4 R_a, f_ab^4 R_b join the pressure's (IAD
+        // gradients: the central form along the pair axis, tried with --torque-free, made the
+        // square patch unstable by t = 0.12).
+        T qa = pa, qb = pb, f4 = T(0);
+        if constexpr (kExtras) {
+            const T f = T(0.5) * (kwa + kwb) * inv_w0;
+            f4 = (f * f) * (f * f);
+            qa += f4 * ra;
+            qb += f4 * (pb < T(0) ? -eps_ts * pb : T(0));
+        }
+        ax -= xb * (qa * aax + qb * abx) + mb * half_pi * gx;
+        ay -= xb * (qa * aay + qb * aby) + mb * half_pi * gy;
+        az -= xb * (qa * aaz + qb * abz) + mb * half_pi * gz;
         T v_dot_a = vabx * aax + vaby * aay + vabz * aaz;
         du_p += xb * v_dot_a;
+        du_ts += xb * f4 * v_dot_a;
         if constexpr (kAlphaField) { // the AV switch's input only
             const T kb = kVolumeElements ? kx[b] : T(rho[b]);
             divv -= xb / kb * v_dot_a;
@@ -195,7 +236,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
             du_cond -= mb * alpha_u * vu * (u[a] - u[b]) * fbar / rho_bar;
         }
     }
-    return {ax, ay, az, pa * du_p + T(0.25) * du_av + du_cond, vsig_max, divv};
+    return {ax, ay, az, pa * du_p + ra * du_ts + T(0.25) * du_av + du_cond, vsig_max, divv};
 }
 
 // The momentum-energy pass of one particle: a, du/dt (and div v for the AV switch) stored;

@@ -30,10 +30,10 @@ void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<
 // stores the velocity gradient for the reconstructed artificial viscosity.
 template <class L = DefaultLauncher, class T>
 void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
-                 const KernelView<T>& k, bool with_gradient = false) {
+                 const KernelView<T>& k, bool with_gradient = false, bool own_k = false) {
     if (with_gradient) ps.enable(kHaloGrad);
     const double first =
-        L::for_each_neighbourhood(nl, IadKernel<T>{make_view(ps), box, k, with_gradient});
+        L::for_each_neighbourhood(nl, IadKernel<T>{make_view(ps), box, k, with_gradient, own_k});
     if (first < double(nl.size())) {
         const auto i = std::uint32_t(first);
         throw Error("IAD matrix tau is singular for particle id " + std::to_string(ps.id[i]) +
@@ -61,8 +61,7 @@ double compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, 
         return p[Field::alpha] ? with_ve(extras, std::true_type{})
                                : with_ve(extras, std::false_type{});
     };
-    return diss.reconstruct || diss.alpha_u > T(0) ? with_alpha(std::true_type{})
-                                                   : with_alpha(std::false_type{});
+    return diss.any_extra() ? with_alpha(std::true_type{}) : with_alpha(std::false_type{});
 }
 
 // SPEC 7: positions, velocities and u of the first n particles (StateUpdateKernel).
