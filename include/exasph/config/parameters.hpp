@@ -110,6 +110,11 @@ inline const std::array kParameters{
           "when the artificial stress is off): the IAD matrix from the pressure term's own "
           "weights X_b/k_a, and artificial viscosity along the pair axis", "",
           OnRestart::kept, &Config::torque_free},
+    Param{"--double-precision", "double_precision", "Store the derived fields (rho, P, c, "
+          "P/(Omega k^2), the IAD matrix, neighbour counts) in double instead of single "
+          "precision (+44 B/particle): their rounding then seeds no asymmetry larger than "
+          "double round-off, as the square patch's z-symmetry needs (on in the wc scheme)", "",
+          OnRestart::kept, &Config::double_precision},
     Param{"--G", "G", "Gravitational constant: self-gravity on the tree (SPEC 8) for any case in "
           "an open box; 0 turns it off (default: the case's, 1 for evrard, else off)",
           "code units", OnRestart::kept, &Config::G, in_range(0, 1e300), false},

@@ -16,14 +16,15 @@ struct SchemeValue {
     std::string_view key; // a parameter of kParameters (a flag or a number)
     double value;         // flags: 0 off, 1 on
 };
-inline constexpr std::size_t kSchemeValues = 7;
+inline constexpr std::size_t kSchemeValues = 8;
 inline constexpr std::array<SchemeValue, kSchemeValues> kStdScheme{{{"alpha", 1},
                                                                     {"av_switch", 0},
                                                                     {"conductivity", 0},
                                                                     {"av_limiter", 0},
                                                                     {"volume_elements", 0},
                                                                     {"tensile_stress", 0},
-                                                                    {"torque_free", 0}}};
+                                                                    {"torque_free", 0},
+                                                                    {"double_precision", 0}}};
 // ve: generalised volume elements (sharp contact discontinuities and density jumps),
 // artificial viscosity from slope-limited reconstructed velocities (no dissipation in smooth
 // flows: shear, rotation, convergent inflow), and conductivity 1 (Price 2008's value: the
@@ -35,18 +36,23 @@ inline constexpr std::array<SchemeValue, kSchemeValues> kVeScheme{{{"alpha", 1},
                                                                    {"av_limiter", 1},
                                                                    {"volume_elements", 1},
                                                                    {"tensile_stress", 0},
-                                                                   {"torque_free", 0}}};
+                                                                   {"torque_free", 0},
+                                                                   {"double_precision", 0}}};
 // wc: std for weakly compressible liquids with free surfaces and negative pressures (the square
 // patch). The artificial stress (Monaghan 2000) stops the tensile clumping that std shows there
 // (-n 20, t = 0.25: closest pair 0.33 of the spacing with std, 0.78 with wc). --torque-free is
-// not in it: beside the stress it drifted L_z more, not less (docs/validation.md).
+// not in it: beside the stress it drifted L_z more, not less (docs/validation.md). Double
+// precision: single-precision rho, P and C turned round-off differences between the identical
+// layers into 1e-7 seeds of v_z, which the patch's layer instability grew to |v_z|/max|v_xy| =
+// 1.2e-2 by t = 0.5 (-n 20); in double, 2.8e-8.
 inline constexpr std::array<SchemeValue, kSchemeValues> kWcScheme{{{"alpha", 1},
                                                                    {"av_switch", 0},
                                                                    {"conductivity", 0},
                                                                    {"av_limiter", 0},
                                                                    {"volume_elements", 0},
                                                                    {"tensile_stress", 0.2},
-                                                                   {"torque_free", 0}}};
+                                                                   {"torque_free", 0},
+                                                                   {"double_precision", 1}}};
 
 inline const auto& scheme_values(Scheme s) {
     return s == Scheme::ve ? kVeScheme : s == Scheme::wc ? kWcScheme : kStdScheme;

@@ -26,7 +26,7 @@ void pack_particles(const ParticleSet<T>& ps, const std::uint32_t* idx, std::siz
                     const FieldSelection& sel, double* buf) {
     std::size_t slot = 0;
     for (Field f : sel.fields) {
-        if (is_narrow(f)) {
+        if (ps.stored_single(f)) {
             const float* src = ps.narrow(f);
             for (std::size_t k = 0; k < count; ++k) buf[slot * count + k] = double(src[idx[k]]);
         } else {
@@ -46,7 +46,7 @@ void unpack_particles(ParticleSet<T>& ps, std::size_t offset, std::size_t count,
                       const FieldSelection& sel, const double* buf) {
     std::size_t slot = 0;
     for (Field f : sel.fields) {
-        if (is_narrow(f)) {
+        if (ps.stored_single(f)) {
             float* dst = ps.narrow(f);
             for (std::size_t k = 0; k < count; ++k) dst[offset + k] = float(buf[slot * count + k]);
         } else {

@@ -51,7 +51,7 @@ template <class T>
 double density_scatter(const ParticleSet<T>& ps, std::size_t n, MPI_Comm comm) {
     double s[3] = {0, 0, double(n)};
     for (std::size_t i = 0; i < n; ++i) {
-        const double rho = ps.narrow(Field::rho)[i];
+        const double rho = ps.value(Field::rho, i);
         s[0] += rho;
         s[1] += rho * rho;
     }

@@ -164,7 +164,10 @@ constexpr const FieldInfo& field_info(Field f) {
 // and the accelerations stay in the working precision. nc is an integer count (exact in float).
 // The sums themselves run in the working precision. (The
 // signal velocity max_b v^sig_ab is not stored: the momentum-energy pass reduces it to the
-// Courant time step where it computes it.)
+// Courant time step where it computes it.) --double-precision stores them in T instead
+// (ParticleSet::set_narrow_single): single-precision rounding of values that differ between
+// symmetric particles in the last double bits makes differences of ~1e-7, which an unstable
+// flow can grow (the square patch's z-symmetry, docs/validation.md).
 constexpr bool is_narrow(Field f) {
     switch (f) {
     case Field::rho:

@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "exasph/particles/field_list.hpp"
@@ -15,6 +17,8 @@ namespace exasph {
 // Optional fields (role kOptional: needed only by some cases or options) hold no memory until
 // enabled; code that iterates fields for a set asks the set (fields()) for the enabled ones.
 // Invariant: every enabled field vector and `id` have size() elements; disabled ones are empty.
+// The is_narrow fields are stored in single precision by default (narrow_single()) or, for
+// `--precision double`, in T like the others (set_narrow_single).
 template <class T>
 class ParticleSet {
   public:
@@ -57,16 +61,50 @@ class ParticleSet {
     const std::vector<T>& operator[](Field f) const { return fields_[static_cast<std::size_t>(f)]; }
     T* data(Field f) { return (*this)[f].data(); }
     const T* data(Field f) const { return (*this)[f].data(); }
-    // Fields stored in single precision (is_narrow).
-    float* narrow(Field f) { return narrow_[static_cast<std::size_t>(f)].data(); }
-    const float* narrow(Field f) const { return narrow_[static_cast<std::size_t>(f)].data(); }
+    // The is_narrow fields in their storage type N: float when narrow_single(), else T.
+    template <class N>
+    N* narrow_as(Field f) {
+        return const_cast<N*>(std::as_const(*this).template narrow_as<N>(f));
+    }
+    template <class N>
+    const N* narrow_as(Field f) const {
+        const auto k = static_cast<std::size_t>(f);
+        if constexpr (std::is_same_v<N, float>)
+            if (narrow_single_) return narrow_[k].data();
+        if constexpr (std::is_same_v<N, T>)
+            if (!narrow_single_) return fields_[k].data();
+        throw Error("particle set: field " + std::string(field_info(f).name) +
+                    " is not stored in the precision asked for");
+    }
+    // Single-precision storage (is_narrow), the default.
+    float* narrow(Field f) { return narrow_as<float>(f); }
+    const float* narrow(Field f) const { return narrow_as<float>(f); }
+    bool narrow_single() const { return narrow_single_; }
+    // Whether f is in the float storage (narrow()) rather than in T (data()).
+    bool stored_single(Field f) const { return narrow_single_ && is_narrow(f); }
+    // Moves the is_narrow fields to single precision (true) or to T (false), keeping the values.
+    void set_narrow_single(bool single) {
+        if (single == narrow_single_) return;
+        for (std::size_t k = 0; k < kNumFields; ++k) {
+            if (!is_narrow(static_cast<Field>(k))) continue;
+            if (single) {
+                narrow_[k].assign(fields_[k].begin(), fields_[k].end());
+                std::vector<T>().swap(fields_[k]);
+            } else {
+                fields_[k].assign(narrow_[k].begin(), narrow_[k].end());
+                std::vector<float>().swap(narrow_[k]);
+            }
+        }
+        narrow_single_ = single;
+    }
     // Either storage, as double (I/O, halo packing, tests).
     double value(Field f, std::size_t i) const {
-        return is_narrow(f) ? double(narrow(f)[i]) : double(data(f)[i]);
+        return stored_single(f) ? double(narrow_[static_cast<std::size_t>(f)][i])
+                                : double(data(f)[i]);
     }
     void set_value(Field f, std::size_t i, double v) {
-        if (is_narrow(f))
-            narrow(f)[i] = float(v);
+        if (stored_single(f))
+            narrow_[static_cast<std::size_t>(f)][i] = float(v);
         else
             data(f)[i] = T(v);
     }
@@ -116,11 +154,11 @@ class ParticleSet {
     // A field's array, in whichever precision it is stored.
     void resize_storage(Field f, std::size_t n) {
         const auto k = static_cast<std::size_t>(f);
-        is_narrow(f) ? narrow_[k].resize(n) : fields_[k].resize(n);
+        stored_single(f) ? narrow_[k].resize(n) : fields_[k].resize(n);
     }
     std::size_t storage_size(Field f) const {
         const auto k = static_cast<std::size_t>(f);
-        return is_narrow(f) ? narrow_[k].size() : fields_[k].size();
+        return stored_single(f) ? narrow_[k].size() : fields_[k].size();
     }
 
     template <class V>
@@ -132,8 +170,9 @@ class ParticleSet {
     }
 
     std::array<std::vector<T>, kNumFields> fields_;
-    std::array<std::vector<float>, kNumFields> narrow_; // used for the is_narrow fields only
+    std::array<std::vector<float>, kNumFields> narrow_; // the is_narrow fields when single
     std::array<bool, kNumFields> optional_on_{};
+    bool narrow_single_ = true;
 };
 
 } // namespace exasph

@@ -48,7 +48,10 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
     const T *vx = ps.data(Field::vx), *vy = ps.data(Field::vy), *vz = ps.data(Field::vz);
     const T *m = ps.data(Field::m), *u = ps.data(Field::u);
-    const float *nc = ps.narrow(Field::nc), *cs = ps.narrow(Field::c);
+    // nc, c and rho in either storage (--precision).
+    auto nc = [&](std::size_t i) { return ps.value(Field::nc, i); };
+    auto cs = [&](std::size_t i) { return ps.value(Field::c, i); };
+    auto rho = [&](std::size_t i) { return ps.value(Field::rho, i); };
     const T* phi = ps.data(Field::phi);
     const T* stir = ps.enabled(Field::stir) ? ps.data(Field::stir) : nullptr;
     const T *ax = ps.data(Field::ax), *ay = ps.data(Field::ay), *az = ps.data(Field::az),
@@ -66,33 +69,32 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
                 mi * (double(y[i]) * vz[i] - double(z[i]) * vy[i]),
                 mi * (double(z[i]) * vx[i] - double(x[i]) * vz[i]),
                 mi * (double(x[i]) * vy[i] - double(y[i]) * vx[i]),
-                double(nc[i]),
+                nc(i),
                 phi ? 0.5 * mi * phi[i] : 0.0, // each pair counted from both sides (SPEC 8)
                 mi,
                 mi * (std::abs(va) + std::abs(double(du[i]))),
-                mi * (std::sqrt(v2) + double(cs[i])),
+                mi * (std::sqrt(v2) + cs(i)),
                 mi * std::sqrt(a2),
                 stir ? mi * stir[i] : 0.0};
     });
     double nc_lo = std::numeric_limits<double>::infinity(), nc_hi = -nc_lo;
     for (std::size_t i = 0; i < n_owned; ++i) {
-        nc_lo = std::min(nc_lo, double(nc[i]));
-        nc_hi = std::max(nc_hi, double(nc[i]));
+        nc_lo = std::min(nc_lo, nc(i));
+        nc_hi = std::max(nc_hi, nc(i));
     }
     for (int k = 0; k < 8; ++k) out[k] = {s[k], -std::numeric_limits<double>::infinity()};
     out[8] = {s[8], nc_hi};
     out[9] = {double(n_owned), -nc_lo};
     double ratio = n_owned > 0 ? double(n_halo) / double(n_owned) : 0.0;
     out[10] = {ratio, ratio};
-    const float* rho = ps.narrow(Field::rho);
     const T *xp = ps.data(Field::x_m1), *yp = ps.data(Field::y_m1), *zp = ps.data(Field::z_m1);
     double l1 = 0, rho_max = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n_owned; ++i) {
-        rho_max = std::max(rho_max, double(rho[i]));
+        rho_max = std::max(rho_max, rho(i));
         if (exact.valid()) {
             double r =
                 std::sqrt(double(xp[i]) * xp[i] + double(yp[i]) * yp[i] + double(zp[i]) * zp[i]);
-            l1 += std::abs(double(rho[i]) - exact(r, t_rho));
+            l1 += std::abs(rho(i) - exact(r, t_rho));
         }
     }
     out[11] = {l1, rho_max};

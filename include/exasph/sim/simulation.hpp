@@ -148,6 +148,7 @@ class Simulation {
         if (cfg_.av_limiter) ps_.enable(kHaloGrad); // the velocity gradient (72 B/particle)
         if (cfg_.av_switch) ps_.enable(Field::alpha), ps_.enable(Field::divv);
         if (cfg_.volume_elements) ps_.enable(Field::xm), ps_.enable(Field::kx);
+        ps_.set_narrow_single(!cfg_.double_precision); // --double-precision
         if (eos_.kind == EosKind::tait && !(ps_.enabled(Field::rho0) && ps_.enabled(Field::p0)))
             throw input_error("the Tait EOS needs the reference fields rho0 and p0", true);
     }

@@ -22,9 +22,10 @@ struct DensityResult {
 // carries a weight X (X = m gives standard SPH exactly), k_a = sum_b X_b W_ab(h_a) including
 // b = a, V_a = X_a / k_a, rho_a = m_a / V_a, and the grad-h term
 // Omega_a = 1 - 1/(3 k_a h_a^3) sum_b X_b (3 w(v) + v w'(v)).
-template <class T>
-EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
-                                        const Box<T>& box, const KernelView<T>& k) {
+template <class T, class N>
+EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb,
+                                        const ParticleView<T, N>& p, const Box<T>& box,
+                                        const KernelView<T>& k) {
     const T* x = p[Field::x];
     const T* y = p[Field::y];
     const T* z = p[Field::z];
@@ -66,9 +67,9 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb, const
 // that momentum-energy reads for both members of a pair (Omega itself is not stored: one float
 // array and one division per pair less). With `capture_rho0` (Tait, first step) the density
 // becomes the reference density rho0 first.
-template <class T>
+template <class T, class N = float>
 struct DensityEosKernel {
-    ParticleView<T> p;
+    ParticleView<T, N> p;
     Box<T> box;
     KernelView<T> k;
     EosParams eos;
@@ -76,19 +77,19 @@ struct DensityEosKernel {
 
     EXASPH_HD void operator()(std::uint32_t i, NeighbourSpan nb) const {
         auto r = density_kern(i, nb, p, box, k);
-        const float rho = float(r.rho); // single precision (is_narrow)
+        const N rho = N(r.rho); // N: float, or T with --double-precision (is_narrow)
         p.narrow(Field::rho)[i] = rho;
         if (p[Field::kx]) p[Field::kx][i] = r.kx;
-        p.narrow(Field::nc)[i] = float(r.nc);
+        p.narrow(Field::nc)[i] = N(r.nc);
         if (capture_rho0) p[Field::rho0][i] = T(rho);
         auto e = eos.kind == EosKind::tait
                      ? tait_eos(T(rho), p[Field::rho0][i], p[Field::p0][i], T(eos.c0))
                      : ideal_gas_eos(T(rho), p[Field::u][i], T(eos.gamma));
-        p.narrow(Field::p)[i] = float(e.p);
-        p.narrow(Field::c)[i] = float(e.c);
+        p.narrow(Field::p)[i] = N(e.p);
+        p.narrow(Field::c)[i] = N(e.c);
         // k = rho for standard SPH (the stored value, as the pair terms read it)
         const T kk = p[Field::kx] ? r.kx : T(rho);
-        p.narrow(Field::pgrad)[i] = float(e.p / (r.omega * kk * kk));
+        p.narrow(Field::pgrad)[i] = N(e.p / (r.omega * kk * kk));
     }
 };
 

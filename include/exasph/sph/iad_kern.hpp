@@ -58,12 +58,12 @@ EXASPH_HD VelocityGradient<T> velocity_gradient(const T (&d)[9], const IadResult
 // SPEC 5, with the volume V_b = X_b / k_b (= m_b / rho_b for standard SPH):
 // tau_a = sum_b V_b (x_b - x_a) (x) (x_b - x_a) W_ab(h_a), C_a = tau_a^{-1}.
 // With a non-null `grad`, the same pass also yields the velocity gradient (velocity_gradient).
-// `kx`: k_b, the volume-element field, or rho_b (single precision, is_narrow) for standard SPH.
+// `kx`: k_b, the volume-element field, or rho_b (stored in N, is_narrow) for standard SPH.
 // `own_k` (--torque-free): V_b = X_b / k_a, the weights of particle a's pressure term in the
 // momentum equation (X_b P_a/(Om_a k_a^2) C_a d W), so that sum_b X_b d x (C_a d) W vanishes with
 // C_a tau_a = I: the IAD pressure forces exert no net torque. Still exact for linear fields.
-template <class T, class K>
-EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
+template <class T, class K, class N>
+EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>& p,
                                      const Box<T>& box, const KernelView<T>& k,
                                      VelocityGradient<T>* grad, const K* kx, bool own_k) {
     const T* x = p[Field::x];
@@ -121,21 +121,21 @@ EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const Pa
     return c;
 }
 
-template <class T>
-EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p,
+template <class T, class N>
+EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>& p,
                                 const Box<T>& box, const KernelView<T>& k,
                                 VelocityGradient<T>* grad = nullptr, bool own_k = false) {
     return p[Field::kx] ? iad_kern_with(a, nb, p, box, k, grad, p[Field::kx], own_k)
                         : iad_kern_with(a, nb, p, box, k, grad, p.narrow(Field::rho), own_k);
 }
 
-// The IAD pass of one particle: C_a stored in single precision (is_narrow), with
+// The IAD pass of one particle: C_a stored in N (is_narrow: float, or T with --double-precision),
 // `with_gradient` also the velocity gradient (Field::gxx..gzz) for the reconstructed artificial
 // viscosity. Returns i where tau_a is singular, else +infinity (the launcher's minimum names the
 // first such particle).
-template <class T>
+template <class T, class N = float>
 struct IadKernel {
-    ParticleView<T> p;
+    ParticleView<T, N> p;
     Box<T> box;
     KernelView<T> k;
     bool with_gradient = false;
@@ -146,12 +146,12 @@ struct IadKernel {
         auto r = iad_kern(i, nb, p, box, k, with_gradient ? &g : nullptr, own_k);
         if (with_gradient)
             for (int c = 0; c < 9; ++c) p[velocity_gradient_field(c)][i] = g.g[c];
-        p.narrow(Field::c11)[i] = float(r.c11);
-        p.narrow(Field::c12)[i] = float(r.c12);
-        p.narrow(Field::c13)[i] = float(r.c13);
-        p.narrow(Field::c22)[i] = float(r.c22);
-        p.narrow(Field::c23)[i] = float(r.c23);
-        p.narrow(Field::c33)[i] = float(r.c33);
+        p.narrow(Field::c11)[i] = N(r.c11);
+        p.narrow(Field::c12)[i] = N(r.c12);
+        p.narrow(Field::c13)[i] = N(r.c13);
+        p.narrow(Field::c22)[i] = N(r.c22);
+        p.narrow(Field::c23)[i] = N(r.c23);
+        p.narrow(Field::c33)[i] = N(r.c33);
         return r.singular ? double(i) : 1e300;
     }
 };

@@ -88,10 +88,10 @@ template <class T>
 struct IadProduct {
     T x, y, z;
 };
-template <class T>
-EXASPH_HD EXASPH_INLINE IadProduct<T> iad_times(const ParticleView<T>& p, std::uint32_t i, T dx,
+template <class T, class N>
+EXASPH_HD EXASPH_INLINE IadProduct<T> iad_times(const ParticleView<T, N>& p, std::uint32_t i, T dx,
                                                 T dy, T dz) {
-    // C is stored in single precision (is_narrow); the products are in T.
+    // C is stored in float (is_narrow; double with --double-precision); the products are in T.
     T c11 = p.narrow(Field::c11)[i], c12 = p.narrow(Field::c12)[i], c13 = p.narrow(Field::c13)[i];
     T c22 = p.narrow(Field::c22)[i], c23 = p.narrow(Field::c23)[i], c33 = p.narrow(Field::c33)[i];
     return {c11 * dx + c12 * dy + c13 * dz, c12 * dx + c22 * dy + c23 * dz,
@@ -113,18 +113,19 @@ EXASPH_HD EXASPH_INLINE IadProduct<T> iad_times(const ParticleView<T>& p, std::u
 // then not computed). kVolumeElements: X and k are fields; without them X = m is read once per
 // neighbour (not twice through an aliased pointer) and X_a / m_a = 1. P/(Om k^2) comes
 // precomputed per particle (Field::pgrad, set by the density pass).
-template <class T, bool kExtras = true, bool kAlphaField = true, bool kVolumeElements = true>
+template <class T, bool kExtras = true, bool kAlphaField = true, bool kVolumeElements = true,
+          class N>
 EXASPH_HD MomentumEnergyResult<T>
-momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p, const Box<T>& box,
-                     const KernelView<T>& k, const Dissipation<T>& diss = {}) {
+momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>& p,
+                     const Box<T>& box, const KernelView<T>& k, const Dissipation<T>& diss = {}) {
     const T alpha_u = diss.alpha_u;
     const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
     const T *h = p[Field::h], *m = p[Field::m];
-    // Single precision (is_narrow): rho, c, P/(Omega k^2) (and P) of both members of a pair come
+    // Stored in N (is_narrow): rho, c, P/(Omega k^2) (and P) of both members of a pair come
     // from the same stored values, so the pair terms stay antisymmetric.
-    const float *rho = p.narrow(Field::rho), *pr = p.narrow(Field::p), *c = p.narrow(Field::c),
-                *pgrad = p.narrow(Field::pgrad);
+    const N *rho = p.narrow(Field::rho), *pr = p.narrow(Field::p), *c = p.narrow(Field::c),
+            *pgrad = p.narrow(Field::pgrad);
     const T* alpha = p[Field::alpha];
     const T ha = h[a], inv_ha = T(1) / ha, inv_ha3 = inv_ha * inv_ha * inv_ha;
     const T rho_a = rho[a], inv_rho_a = T(1) / rho_a;
@@ -242,9 +243,9 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T>& p
 // The momentum-energy pass of one particle: a, du/dt (and div v for the AV switch) stored;
 // returns the particle's Courant time step (SPEC 7) for the factor `courant`, so that signal
 // velocities are used where they are computed, not stored.
-template <class T, bool kExtras, bool kAlphaField, bool kVolumeElements>
+template <class T, bool kExtras, bool kAlphaField, bool kVolumeElements, class N = float>
 struct MomentumEnergyKernel {
-    ParticleView<T> p;
+    ParticleView<T, N> p;
     Box<T> box;
     KernelView<T> k;
     Dissipation<T> diss;

@@ -23,7 +23,10 @@ namespace exasph {
 template <class L = DefaultLauncher, class T>
 void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
                      const KernelView<T>& k, const EosParams& eos = {}, bool capture_rho0 = false) {
-    L::for_each_neighbourhood(nl, DensityEosKernel<T>{make_view(ps), box, k, eos, capture_rho0});
+    with_view(ps, [&](auto p) {
+        using N = typename decltype(p)::narrow_type;
+        L::for_each_neighbourhood(nl, DensityEosKernel<T, N>{p, box, k, eos, capture_rho0});
+    });
 }
 
 // SPEC 5. Throws Error naming a particle whose tau is singular. With `with_gradient`, also
@@ -32,8 +35,10 @@ template <class L = DefaultLauncher, class T>
 void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
                  const KernelView<T>& k, bool with_gradient = false, bool own_k = false) {
     if (with_gradient) ps.enable(kHaloGrad);
-    const double first =
-        L::for_each_neighbourhood(nl, IadKernel<T>{make_view(ps), box, k, with_gradient, own_k});
+    const double first = with_view(ps, [&](auto p) {
+        using N = typename decltype(p)::narrow_type;
+        return L::for_each_neighbourhood(nl, IadKernel<T, N>{p, box, k, with_gradient, own_k});
+    });
     if (first < double(nl.size())) {
         const auto i = std::uint32_t(first);
         throw Error("IAD matrix tau is singular for particle id " + std::to_string(ps.id[i]) +
@@ -48,52 +53,66 @@ template <class L = DefaultLauncher, class T>
 double compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
                                const KernelView<T>& k, const Dissipation<T>& diss = {},
                                T courant = T(0.2)) {
-    const auto p = make_view(ps);
-    auto pass = [&](auto extras, auto alpha, auto ve) {
-        return L::for_each_neighbourhood(
-            nl, MomentumEnergyKernel<T, extras(), alpha(), ve()>{p, box, k, diss, courant});
-    };
-    auto with_ve = [&](auto extras, auto alpha) {
-        return p[Field::kx] ? pass(extras, alpha, std::true_type{})
-                            : pass(extras, alpha, std::false_type{});
-    };
-    auto with_alpha = [&](auto extras) {
-        return p[Field::alpha] ? with_ve(extras, std::true_type{})
-                               : with_ve(extras, std::false_type{});
-    };
-    return diss.any_extra() ? with_alpha(std::true_type{}) : with_alpha(std::false_type{});
+    return with_view(ps, [&](auto p) {
+        using N = typename decltype(p)::narrow_type;
+        auto pass = [&](auto extras, auto alpha, auto ve) {
+            return L::for_each_neighbourhood(
+                nl, MomentumEnergyKernel<T, extras(), alpha(), ve(), N>{p, box, k, diss, courant});
+        };
+        auto with_ve = [&](auto extras, auto alpha) {
+            return p[Field::kx] ? pass(extras, alpha, std::true_type{})
+                                : pass(extras, alpha, std::false_type{});
+        };
+        auto with_alpha = [&](auto extras) {
+            return p[Field::alpha] ? with_ve(extras, std::true_type{})
+                                   : with_ve(extras, std::false_type{});
+        };
+        return diss.any_extra() ? with_alpha(std::true_type{}) : with_alpha(std::false_type{});
+    });
 }
 
 // SPEC 7: positions, velocities and u of the first n particles (StateUpdateKernel).
 template <class L = DefaultLauncher, class T>
 void update_state(ParticleSet<T>& ps, std::size_t n, const Box<T>& box, double dt, double dt_m1) {
-    L::for_each(n, StateUpdateKernel<T>{make_view(ps), box, T(dt), T(dt_m1)});
+    with_view(ps, [&](auto p) {
+        L::for_each(
+            n, StateUpdateKernel<T, typename decltype(p)::narrow_type>{p, box, T(dt), T(dt_m1)});
+    });
 }
 
 // SPEC 2 (SmoothingLengthKernel).
 template <class L = DefaultLauncher, class T>
 void update_smoothing_lengths(ParticleSet<T>& ps, std::size_t n, double ng0) {
-    L::for_each(n, SmoothingLengthKernel<T>{make_view(ps), T(ng0)});
+    with_view(ps, [&](auto p) {
+        using N = typename decltype(p)::narrow_type;
+        L::for_each(n, SmoothingLengthKernel<T, N>{p, T(ng0)});
+    });
 }
 
 // The AV switch (ViscosityKernel), alpha between alpha_min and alpha_max.
 template <class L = DefaultLauncher, class T>
 void update_viscosity(ParticleSet<T>& ps, std::size_t n, double dt, double alpha_min,
                       double alpha_max) {
-    L::for_each(
-        n, ViscosityKernel<T>{make_view(ps), T(dt), T(alpha_min), T(alpha_max), T(kAlphaDecay)});
+    with_view(ps, [&](auto p) {
+        using N = typename decltype(p)::narrow_type;
+        L::for_each(n, ViscosityKernel<T, N>{p, T(dt), T(alpha_min), T(alpha_max), T(kAlphaDecay)});
+    });
 }
 
 // Volume elements for the next step (VolumeWeightKernel).
 // The stirring force of driven turbulence, added to the acceleration (sph/stir_kern.hpp).
 template <class L = DefaultLauncher, class T>
 void add_stirring(ParticleSet<T>& ps, std::size_t n, const StirModes& modes) {
-    L::for_each(n, StirKernel<T>{make_view(ps), modes});
+    with_view(ps, [&](auto p) {
+        L::for_each(n, StirKernel<T, typename decltype(p)::narrow_type>{p, modes});
+    });
 }
 
 template <class L = DefaultLauncher, class T>
 void update_volume_weights(ParticleSet<T>& ps, std::size_t n) {
-    L::for_each(n, VolumeWeightKernel<T>{make_view(ps)});
+    with_view(ps, [&](auto p) {
+        L::for_each(n, VolumeWeightKernel<T, typename decltype(p)::narrow_type>{p});
+    });
 }
 
 // Volume elements start from X = m, standard SPH's weights: before the first forces, a few
@@ -115,7 +134,10 @@ void settle_volume_weights(ParticleSet<T>& ps, const NeighbourLists<T>& nl, cons
 // The smallest acceleration time-step limit of the first n particles (AccelerationStepKernel).
 template <class L = DefaultLauncher, class T>
 double acceleration_time_step_min(ParticleSet<T>& ps, std::size_t n, double eps) {
-    return L::reduce_min(n, AccelerationStepKernel<T>{make_view(ps), eps});
+    return with_view(ps, [&](auto p) {
+        return L::reduce_min(n,
+                             AccelerationStepKernel<T, typename decltype(p)::narrow_type>{p, eps});
+    });
 }
 
 } // namespace exasph

@@ -23,9 +23,9 @@ struct StirModes {
 // Adds the stirring acceleration at the particle's position to a, and keeps v.a_stir in the
 // field stir (the power per unit mass, for the energy books). exp(i n_d k0_d x_d) for every
 // n_d comes from one sine and cosine per axis by complex multiplication.
-template <class T>
+template <class T, class N = float>
 struct StirKernel {
-    ParticleView<T> p;
+    ParticleView<T, N> p;
     StirModes modes;
 
     EXASPH_HD void operator()(std::uint32_t i) const {

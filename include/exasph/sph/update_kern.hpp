@@ -15,9 +15,9 @@
 namespace exasph {
 
 // SPEC 7: Press scheme for x and v, Adams-Bashforth for u, periodic wrap of x and x_{n-1}.
-template <class T>
+template <class T, class N = float>
 struct StateUpdateKernel {
-    ParticleView<T> p;
+    ParticleView<T, N> p;
     Box<T> box;
     T dt, dt_m1;
 
@@ -41,9 +41,9 @@ struct StateUpdateKernel {
 };
 
 // SPEC 2: h from this step's neighbour count.
-template <class T>
+template <class T, class N = float>
 struct SmoothingLengthKernel {
-    ParticleView<T> p;
+    ParticleView<T, N> p;
     T ng0;
 
     EXASPH_HD void operator()(std::uint32_t i) const {
@@ -52,9 +52,9 @@ struct SmoothingLengthKernel {
 };
 
 // The AV switch: alpha follows the compression of the step (sph/av_switch.hpp).
-template <class T>
+template <class T, class N = float>
 struct ViscosityKernel {
-    ParticleView<T> p;
+    ParticleView<T, N> p;
     T dt, alpha_min, alpha_max, decay;
 
     EXASPH_HD void operator()(std::uint32_t i) const {
@@ -70,9 +70,9 @@ inline constexpr double kAlphaDecay = 0.2;
 // Generalised volume elements: X_a = (m_a / rho_a)^p from this step's density, used by the
 // next step (Hopkins 2013 / Cabezon et al. 2017 with p = 0.7).
 inline constexpr double kVolumeElementExponent = 0.7;
-template <class T>
+template <class T, class N = float>
 struct VolumeWeightKernel {
-    ParticleView<T> p;
+    ParticleView<T, N> p;
 
     EXASPH_HD void operator()(std::uint32_t i) const {
         const double v = double(p[Field::m][i] / p.narrow(Field::rho)[i]);
@@ -81,9 +81,9 @@ struct VolumeWeightKernel {
 };
 
 // SPEC 7 with gravity: the acceleration limit sqrt(eps h / |a|) of particle i.
-template <class T>
+template <class T, class N = float>
 struct AccelerationStepKernel {
-    ParticleView<T> p;
+    ParticleView<T, N> p;
     double eps;
 
     EXASPH_HD double operator()(std::uint32_t i) const {

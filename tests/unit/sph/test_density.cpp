@@ -68,6 +68,41 @@ TEST_P(LatticeDensity, MatchesTrueDensityOmegaIsOneAndEosIsApplied) {
 
 INSTANTIATE_TEST_SUITE_P(NeighbourCounts, LatticeDensity, ::testing::Values(100.0, 250.0));
 
+// --double-precision: the derived fields move to double storage with their values, the passes
+// then store the kernels' double results unrounded, and the single-precision accessor refuses.
+TEST(DerivedFieldPrecision, DoubleStorageKeepsTheKernelsResultsUnrounded) {
+    Prepared s;
+    s.ps = testref::periodic_lattice(10, 100, s.box);
+    prepare(s);
+    for (std::size_t i = 0; i < s.ps.size(); ++i) s.ps[Field::u][i] = 1.0 + 1e-3 * double(i % 17);
+    const auto& k = testref::sinc6();
+    compute_density(s.ps, s.nl, s.box, k.view());
+    const double rho_single = s.ps.value(Field::rho, 5);
+    s.ps.set_narrow_single(false);
+    ASSERT_FALSE(s.ps.narrow_single());
+    EXPECT_EQ(s.ps.value(Field::rho, 5), rho_single); // moved with its value
+    EXPECT_THROW(s.ps.narrow(Field::rho), Error);
+    compute_density(s.ps, s.nl, s.box, k.view());
+    compute_iad(s.ps, s.nl, s.box, k.view());
+    auto view = make_view<double>(s.ps);
+    double max_rho_diff = 0, max_c_diff = 0;
+    for (std::size_t i = 0; i < s.ps.size(); ++i) {
+        const auto list = s.nl.list(std::uint32_t(i));
+        const NeighbourSpan nb{list.data(), std::uint32_t(list.size())};
+        const auto d = density_kern(std::uint32_t(i), nb, view, s.box, k.view());
+        const auto c = iad_kern(std::uint32_t(i), nb, view, s.box, k.view());
+        max_rho_diff = std::max(max_rho_diff, std::abs(s.ps[Field::rho][i] - d.rho));
+        max_c_diff = std::max(max_c_diff, std::abs(s.ps[Field::c11][i] / c.c11 - 1.0));
+    }
+    // Double storage: the pass's value is the kernel's to round-off (the driver's inlined copy
+    // may round the sum differently in the last bits), far below float's 6e-8.
+    EXPECT_LT(max_rho_diff, 1e-13);
+    EXPECT_LT(max_c_diff, 1e-13);
+    EXPECT_NE(s.ps.value(Field::rho, 5), rho_single);
+    s.ps.set_narrow_single(true);
+    EXPECT_EQ(s.ps.value(Field::rho, 5), double(float(s.ps.value(Field::rho, 5))));
+}
+
 TEST(Eos, IdealGasAndTait) {
     auto g = ideal_gas_eos(2.0, 3.0, 5.0 / 3.0);
     EXPECT_DOUBLE_EQ(g.p, 4.0);
