@@ -6,6 +6,7 @@
     /usr/bin/python3 tools/case_plots.py slice SNAP [SNAP ...] -o slices.png [--field rho]
     /usr/bin/python3 tools/case_plots.py wind SNAP [SNAP ...] -o wind.png [--label A --label B]
     /usr/bin/python3 tools/case_plots.py turb SNAP [SNAP ...] -o turb.png [--label A --label B]
+    /usr/bin/python3 tools/case_plots.py square SNAP [SNAP ...] -o square.png
 
 gresho: v_phi against radius (particles, binned mean, analytic profile) of the last snapshot,
 and L1(v_phi)/v0 of every snapshot (printed; plotted against time when there are several).
@@ -17,8 +18,12 @@ Agertz et al. 2007, for the case's default parameters) against t / tau_KH, one c
 directory. turb: driven turbulence's rms Mach number against time (from the diagnostics.csv
 beside each directory's snapshots: v_rms about the mean velocity over the sound speed of the
 mean internal energy) and the velocity power spectrum E(k) of each directory's last snapshot
-(volume-weighted cloud-in-cell deposit on a grid of about one cell per particle spacing). Exits
-2 with one line on a missing or malformed snapshot.
+(volume-weighted cloud-in-cell deposit on a grid of about one cell per particle spacing).
+square: the rotating square patch (issue 17): a top view of the layer nearest z = 0 coloured by
+pressure for each snapshot, and L_z(t) and E_tot(t) relative to t = 0 from the diagnostics.csv
+beside the snapshots; prints, per snapshot, |v_z| / max|v_xy| (median and maximum) and the
+closest pair in units of the initial spacing (periodic in z). Exits 2 with one line on a
+missing or malformed snapshot.
 """
 import argparse
 import sys
@@ -215,6 +220,59 @@ def turb(args):
     fig.savefig(args.output, dpi=110)
 
 
+def closest_pair(x, y, z, period, block=512):
+    best = np.inf
+    for i in range(0, len(x), block):
+        dx = x[i:i + block, None] - x[None, :]
+        dy = y[i:i + block, None] - y[None, :]
+        dz = np.abs(z[i:i + block, None] - z[None, :])
+        dz = np.minimum(dz, period - dz)
+        d2 = dx * dx + dy * dy + dz * dz
+        d2[np.arange(d2.shape[0]), np.arange(i, i + d2.shape[0])] = np.inf
+        best = min(best, d2.min())
+    return np.sqrt(best)
+
+
+def square(args):
+    n = len(args.snapshots)
+    fig, axes = plt.subplots(1, n + 1, figsize=(4.2 * n + 5, 4), squeeze=False)
+    for ax, path in zip(axes[0], args.snapshots):
+        d = read_snapshot(path, ["x", "y", "z", "vx", "vy", "vz", "p"])
+        side = int(h5py.File(path, "r").attrs.get("param:side", 0))
+        if side < 2:
+            fail(f"{path}: no param:side attribute (not a square-patch snapshot)")
+        period = d["box_hi"][2] - d["box_lo"][2]
+        vxy = np.hypot(d["vx"], d["vy"]).max()
+        ratio = np.abs(d["vz"]) / vxy
+        closest = closest_pair(d["x"], d["y"], d["z"], period) / (period / side)
+        print(f"t = {d['time']:.4f}: |v_z|/max|v_xy| median {np.median(ratio):.3e} max "
+              f"{ratio.max():.3e}; closest pair {closest:.3f} of the spacing")
+        layer = d["z"][np.argmin(np.abs(d["z"]))]
+        keep = np.abs(d["z"] - layer) < 0.25 * period / side
+        sc = ax.scatter(d["x"][keep], d["y"][keep], c=d["p"][keep], s=args.size, cmap="viridis",
+                        linewidths=0)
+        ax.set_aspect("equal")
+        ax.set(xlabel="x [cm]", ylabel="y [cm]", title=f"t = {d['time']:.2f} s, z = {layer:.1f}")
+        fig.colorbar(sc, ax=ax, label="P [Ba]", shrink=0.8)
+    csv = Path(args.snapshots[0]).parent / "diagnostics.csv"
+    if not csv.exists():
+        fail(f"{csv}: no such file (square reads the diagnostics.csv beside the snapshots)")
+    h = np.genfromtxt(csv, delimiter=",", names=True)
+    lz = 100 * (h["lz"] / h["lz"][0] - 1)
+    et = 100 * (h["etot"] / h["etot"][0] - 1)
+    print(f"L_z: worst {np.abs(lz).max():.3f} % of L_z(0) = {h['lz'][0]:.4e}, at the end "
+          f"{lz[-1]:+.3f} %; E_tot at the end {et[-1]:+.3f} % (t = {h['time'][-1]:.4f})")
+    ax = axes[0][n]
+    ax.plot(h["time"], lz, label="L_z")
+    ax.plot(h["time"], et, label="E_tot = E_kin + sum m u")
+    ax.axhspan(-0.2, 0.2, color="0.9", label="0.2 %")
+    ax.set(xlabel="t [s]", ylabel="change since t = 0 [%]")
+    ax.legend()
+    fig.suptitle(args.title)
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=110)
+
+
 def slice_plot(args):
     n = len(args.snapshots)
     fig, axes = plt.subplots(1, n, figsize=(4.2 * n + 0.8, 4), squeeze=False)
@@ -236,7 +294,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     sub = ap.add_subparsers(dest="command", required=True)
     for name, fn in (("gresho", gresho), ("kh", kh), ("slice", slice_plot), ("wind", wind),
-                     ("turb", turb)):
+                     ("turb", turb), ("square", square)):
         p = sub.add_parser(name)
         p.add_argument("snapshots", nargs="+")
         p.add_argument("-o", "--output", required=True, help="PNG file")
@@ -246,6 +304,7 @@ def main():
             p.add_argument("--label", action="append", help="one per directory of snapshots")
         if name == "slice":
             p.add_argument("--field", default="rho")
+        if name in ("slice", "square"):
             p.add_argument("--size", type=float, default=2.0, help="marker size")
     args = ap.parse_args()
     args.run(args)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""tools/case_plots.py makes its five figures from short runs of their cases, prints the
+"""tools/case_plots.py makes its six figures from short runs of their cases, prints the
 numbers they plot (the Gresho-Chan L1 of an untouched vortex is 0), and exits 2 with one line
 on a missing snapshot."""
 import argparse
@@ -45,6 +45,11 @@ def main():
         mach = float(re.search(r"Mach_rms ([0-9.]+) at t", out).group(1))
         assert 0 < mach < 0.1, f"40 steps of stirring from rest: Mach {mach}"
         assert re.search(r"E\(k\) at t = [0-9.]+: k=1 ", out), out
+        out = plot("square", run_case(args.exe, "square-patch", 12, w / "s", 3), w / "s.png")
+        m = re.search(r"median ([0-9.e+-]+) max ([0-9.e+-]+); closest pair ([0-9.]+)", out)
+        assert m and float(m.group(2)) < 1e-6, out  # three steps: the layers stay identical
+        assert 0.9 < float(m.group(3)) <= 1.0, out  # the lattice has barely moved
+        assert re.search(r"L_z: worst 0\.00[0-9] %", out), out
         p = subprocess.run([sys.executable, PLOTS, "gresho", str(w / "missing.h5"), "-o",
                             str(w / "x.png")], capture_output=True, text=True)
         assert p.returncode == 2 and "no such file" in p.stderr, p.stderr
