@@ -48,7 +48,7 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
     const T *vx = ps.data(Field::vx), *vy = ps.data(Field::vy), *vz = ps.data(Field::vz);
     const T *m = ps.data(Field::m), *u = ps.data(Field::u);
-    // nc, c and rho in either storage (--precision).
+    // nc, c and rho in either storage (float, or double with --double-precision).
     auto nc = [&](std::size_t i) { return ps.value(Field::nc, i); };
     auto cs = [&](std::size_t i) { return ps.value(Field::c, i); };
     auto rho = [&](std::size_t i) { return ps.value(Field::rho, i); };
