@@ -68,6 +68,15 @@ expect_rejected "--theta" --init evrard --theta 1.5
 expect_rejected "open box" --init sedov --lattice -n 10 --G 1 -s 1
 expect_rejected "--curve" --curve peano
 expect_rejected "--on-sdc" --on-sdc maybe
+expect_rejected "--backend" --backend tpu
+# Issue 18, acceptance 3: where auto falls back to the CPU (no device, or a build without CUDA),
+# --backend cuda is one line and exit 2, never a CUDA error dump.
+backend=$("$exe" -n 8 -s 0 --out "$work/backend" 2>&1 | grep '^backend:')
+echo "$backend" | grep -qE '^backend: (cpu \(OpenMP; auto: .+\)|cuda, .+ \(auto\))$' ||
+    fail "the header's backend line: $backend"
+if echo "$backend" | grep -q '^backend: cpu'; then
+    expect_rejected "--backend cuda" --backend cuda -n 8 -s 1
+fi
 
 # Closed choices take their names in any case; the header shows every physics parameter and
 # the run-control parameters that differ from their defaults (issue 15).

@@ -20,7 +20,8 @@ struct ParticleState {
     double ax, ay, az, phi; // of the last step (hydro + gravity), potential 0 without gravity
 };
 
-inline std::vector<ParticleState> owned_state(const Simulation<double>& sim) {
+template <class Sim>
+std::vector<ParticleState> owned_state(const Sim& sim) {
     const auto& ps = sim.particles();
     std::vector<ParticleState> out(sim.n_owned());
     const bool gravity = ps.enabled(Field::phi);

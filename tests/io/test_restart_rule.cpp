@@ -52,6 +52,7 @@ std::string changed_value(const Param& p) {
     if (key == "sdc_rollback_store") return "memory";
     if (key == "curve") return "morton";
     if (key == "scheme") return "ve";
+    if (key == "backend") return "cpu";
     if (key == "steps") return "5";
     if (key == "restart") return "";
     return std::visit(

@@ -37,6 +37,13 @@ struct Choices<Scheme> {
         {{"std", Scheme::std_sph}, {"ve", Scheme::ve}, {"wc", Scheme::wc}}};
 };
 
+template <>
+struct Choices<BackendChoice> {
+    static constexpr std::array<std::pair<std::string_view, BackendChoice>, 3> values{
+        {{"cpu", BackendChoice::cpu}, {"cuda", BackendChoice::cuda},
+         {"auto", BackendChoice::automatic}}};
+};
+
 template <class E>
 std::string_view choice_name(E e) {
     for (const auto& [name, value] : Choices<E>::values)

@@ -11,6 +11,7 @@ namespace exasph {
 enum class SdcPolicy { rollback, abort, off }; // --on-sdc
 enum class RollbackStore { disk, memory };     // --sdc-rollback-store
 enum class Scheme { std_sph, ve, wc };         // --scheme (config/scheme.hpp)
+enum class BackendChoice { cpu, cuda, automatic }; // --backend (run/backend.hpp)
 
 // Everything a run is configured with. Each member that the command line sets is declared
 // once more, with its flag, help, unit and restart rule, in the parameter table
@@ -51,6 +52,7 @@ struct Config {
     std::string sdc_rollback_dir; // empty: out_dir
     std::string inject_fault;     // STEP:FIELD:ID:BIT (tests)
     int threads = 0;              // 0: OpenMP default
+    BackendChoice backend = BackendChoice::automatic; // where the SPH passes run
     int leaf_size = 64;           // local octree leaf size
     int global_bucket = 128;      // global (top) tree leaf size: the unit of MPI load balance
     CurveKind curve = CurveKind::hilbert;

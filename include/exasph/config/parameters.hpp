@@ -38,7 +38,8 @@ inline constexpr ValueRange kNonNegative{ValueRange::nonnegative};
 using ParamMember =
     std::variant<double Config::*, int Config::*, std::int64_t Config::*, bool Config::*,
                  std::string Config::*, std::vector<std::string> Config::*, CurveKind Config::*,
-                 Scheme Config::*, SdcPolicy Config::*, RollbackStore Config::*, CustomValue>;
+                 Scheme Config::*, SdcPolicy Config::*, RollbackStore Config::*,
+                 BackendChoice Config::*, CustomValue>;
 
 // One run parameter, declared once: the command line, --help, the restart rule, the checkpoint
 // attributes and the run header are all generated from kParameters.
@@ -147,6 +148,10 @@ inline const std::array kParameters{
           &Config::t_end, kPositive, false},
     Param{"--threads", "threads", "OpenMP threads (default: OMP_NUM_THREADS or all)", "",
           OnRestart::given, &Config::threads, in_range(1, 4096), false},
+    Param{"--backend", "backend", "Where the SPH passes run: cpu (OpenMP threads), cuda (one "
+          "GPU per rank, rank modulo the visible devices; gravity stays on the CPU) or auto "
+          "(cuda where this build has it and a device is visible, else cpu)", "",
+          OnRestart::given, &Config::backend},
     Param{"--restart", "restart", "Continue the run saved in this checkpoint (any rank count); "
           "the physics parameters come from the checkpoint", "", OnRestart::given,
           &Config::restart_file, {}, false},

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "exasph/util/annotate.hpp"
+#include "exasph/util/field_memory.hpp"
 
 namespace exasph {
 
@@ -82,7 +83,7 @@ class KernelTable {
   private:
     KernelShape shape_;
     double norm_ = 0;
-    std::vector<T> w_, dw_;
+    FieldArray<T> w_, dw_; // read by the kernels, on a device too
 };
 
 } // namespace exasph

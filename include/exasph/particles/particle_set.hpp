@@ -10,10 +10,12 @@
 
 #include "exasph/particles/field_list.hpp"
 #include "exasph/util/error.hpp"
+#include "exasph/util/field_memory.hpp"
 
 namespace exasph {
 
-// Structure of arrays: one vector per field of kFieldTable, plus a persistent 64-bit id.
+// Structure of arrays: one FieldArray (util/field_memory.hpp: host, or memory a device reads too)
+// per field of kFieldTable, plus a persistent 64-bit id.
 // Optional fields (role kOptional: needed only by some cases or options) hold no memory until
 // enabled; code that iterates fields for a set asks the set (fields()) for the enabled ones.
 // Invariant: every enabled field vector and `id` have size() elements; disabled ones are empty.
@@ -57,8 +59,8 @@ class ParticleSet {
     }
 
     // Fields in the working precision T (not is_narrow).
-    std::vector<T>& operator[](Field f) { return fields_[static_cast<std::size_t>(f)]; }
-    const std::vector<T>& operator[](Field f) const { return fields_[static_cast<std::size_t>(f)]; }
+    FieldArray<T>& operator[](Field f) { return fields_[static_cast<std::size_t>(f)]; }
+    const FieldArray<T>& operator[](Field f) const { return fields_[static_cast<std::size_t>(f)]; }
     T* data(Field f) { return (*this)[f].data(); }
     const T* data(Field f) const { return (*this)[f].data(); }
     // The is_narrow fields in their storage type N: float when narrow_single(), else T.
@@ -89,10 +91,10 @@ class ParticleSet {
             if (!is_narrow(static_cast<Field>(k))) continue;
             if (single) {
                 narrow_[k].assign(fields_[k].begin(), fields_[k].end());
-                std::vector<T>().swap(fields_[k]);
+                FieldArray<T>().swap(fields_[k]);
             } else {
                 fields_[k].assign(narrow_[k].begin(), narrow_[k].end());
-                std::vector<float>().swap(narrow_[k]);
+                FieldArray<float>().swap(narrow_[k]);
             }
         }
         narrow_single_ = single;
@@ -113,7 +115,7 @@ class ParticleSet {
     // set then has order.size() particles (a shorter order drops particles). Derived fields are
     // recomputed every step: they are only resized.
     void permute(const std::vector<std::uint32_t>& order, std::uint8_t roles = kState) {
-        std::vector<T> scratch(order.size());
+        FieldArray<T> scratch(order.size());
         for (Field fld : fields(roles)) {
             if (is_narrow(fld)) throw Error("particle set: narrow fields are never permuted");
             auto& f = (*this)[fld];
@@ -161,16 +163,15 @@ class ParticleSet {
         return stored_single(f) ? narrow_[k].size() : fields_[k].size();
     }
 
-    template <class V>
-    static void gather(const std::vector<V>& src, const std::vector<std::uint32_t>& order,
-                       std::vector<V>& dst) {
+    template <class Array>
+    static void gather(const Array& src, const std::vector<std::uint32_t>& order, Array& dst) {
         dst.resize(order.size());
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < order.size(); ++i) dst[i] = src[order[i]];
     }
 
-    std::array<std::vector<T>, kNumFields> fields_;
-    std::array<std::vector<float>, kNumFields> narrow_; // the is_narrow fields when single
+    std::array<FieldArray<T>, kNumFields> fields_;
+    std::array<FieldArray<float>, kNumFields> narrow_; // the is_narrow fields when single
     std::array<bool, kNumFields> optional_on_{};
     bool narrow_single_ = true;
 };

@@ -17,6 +17,7 @@
 #include "exasph/io/checkpoint.hpp"
 #include "exasph/io/csv_table.hpp"
 #include "exasph/io/snapshot.hpp"
+#include "exasph/run/backend.hpp"
 #include "exasph/run/diagnostics_table.hpp"
 #include "exasph/run/output_schedule.hpp"
 #include "exasph/run/run_report.hpp"
@@ -58,19 +59,21 @@ extern "C" inline void on_stop_signal(int signum) {
 }
 } // namespace detail
 
-// A whole simulation as configured, on all ranks of MPI_COMM_WORLD: setup (constructor), the
-// loop of steps with its outputs (loop()), the summary. Rank 0 prints the header, one row per
-// step and the summary.
+// A whole simulation as configured, on all ranks of MPI_COMM_WORLD, its SPH passes on launcher
+// L (run/backend.hpp): setup (constructor), the loop of steps with its outputs (loop()), the
+// summary. Rank 0 prints the header, one row per step and the summary.
+template <class L>
 class RunDriver {
   public:
-    RunDriver(Config cfg, std::ostream& out) : cfg_(std::move(cfg)), out_(out) {
+    RunDriver(Config cfg, std::ostream& out, const std::string& backend)
+        : cfg_(std::move(cfg)), out_(out) {
         validate_config(cfg_);
 #ifdef _OPENMP
         if (cfg_.threads > 0) omp_set_num_threads(cfg_.threads);
 #endif
         MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
         MPI_Comm_size(MPI_COMM_WORLD, &nranks_);
-        auto start = start_run(cfg_, MPI_COMM_WORLD, &std::cout);
+        auto start = start_run<L>(cfg_, MPI_COMM_WORLD, &std::cout);
         sim_ = std::move(start.sim);
         units_ = start.units;
         cfg_.G = sim_->gravitational_constant(); // outputs record the G the run uses
@@ -82,7 +85,7 @@ class RunDriver {
                               "none)",
                               true);
         csv_ = open_diagnostics(cfg_, root(), !cfg_.restart_file.empty());
-        if (root()) print_header(out_, cfg_, *sim_, nranks_, t_end_);
+        if (root()) print_header(out_, cfg_, *sim_, nranks_, t_end_, backend);
         if (t_end_ > 0) sim_->set_end_time(t_end_);
         schedule_ = std::make_unique<OutputSchedule>(cfg_, sim_->time(), auto_checkpoint_mtbf());
     }
@@ -204,7 +207,7 @@ class RunDriver {
     Config cfg_;
     std::ostream& out_;
     int rank_ = 0, nranks_ = 1;
-    std::unique_ptr<Simulation<double>> sim_;
+    std::unique_ptr<Simulation<double, L>> sim_;
     std::string units_;
     std::vector<Field> fields_;
     double t_end_ = -1, mtbf_ = 0, wall0_ = 0, output_wall_ = 0;
@@ -214,12 +217,22 @@ class RunDriver {
     bool warned_ngmax_ = false;
 };
 
-// Runs a whole simulation; returns the exit code (errors are thrown as Error).
-inline int run(Config cfg, std::ostream& out) {
-    RunDriver driver(std::move(cfg), out);
+template <class L>
+int run_on(Config cfg, std::ostream& out, const std::string& backend) {
+    RunDriver<L> driver(std::move(cfg), out, backend);
     const int code = driver.loop();
     if (code == 0) driver.summary();
     return code;
+}
+
+// Runs a whole simulation on the backend that --backend picks; returns the exit code (errors
+// are thrown as Error).
+inline int run(Config cfg, std::ostream& out) {
+    const BackendPick pick = pick_backend(cfg.backend, MPI_COMM_WORLD);
+#if EXASPH_HAVE_CUDA
+    if (pick.backend == Backend::cuda) return run_on<CudaLauncher>(std::move(cfg), out, pick.line);
+#endif
+    return run_on<OmpLauncher>(std::move(cfg), out, pick.line);
 }
 
 } // namespace exasph

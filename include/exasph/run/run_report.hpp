@@ -35,14 +35,15 @@ inline int thread_count() {
 
 // Version, case, particles, ranks x threads, every physics parameter and the run-control
 // parameters that differ from their defaults (config/summary.hpp), the end and the column titles.
-template <class T>
-void print_header(std::ostream& out, const Config& cfg, const Simulation<T>& sim, int nranks,
-                  double t_end) {
+template <class T, class L>
+void print_header(std::ostream& out, const Config& cfg, const Simulation<T, L>& sim, int nranks,
+                  double t_end, const std::string& backend) {
     const bool restart = !cfg.restart_file.empty();
     out << "exasph " << kVersion << " (" << kBuildInfo << ")\n";
     out << strprintf("%s %s, %llu particles, %d ranks x %d threads\n",
                      restart ? "restart of" : "case", cfg.init.c_str(),
                      (unsigned long long)sim.diagnostics().n, nranks, thread_count());
+    out << "backend: " << backend << "\n";
     out << "physics: " << physics_summary(cfg) << "\n";
     const std::string control = run_control_summary(cfg);
     if (!control.empty()) out << "run control: " << control << "\n";
@@ -58,8 +59,8 @@ void print_header(std::ostream& out, const Config& cfg, const Simulation<T>& sim
 }
 
 // One step: t, dt, E_tot, L_z, imbalance, halo ratios, wall seconds, the estimated time left.
-template <class T>
-void print_step(std::ostream& out, const Simulation<T>& sim, double wall_step, double mean_wall,
+template <class T, class L>
+void print_step(std::ostream& out, const Simulation<T, L>& sim, double wall_step, double mean_wall,
                 double t_end) {
     const auto& d = sim.diagnostics();
     const std::string eta = t_end > 0 && d.dt > 0
@@ -76,8 +77,8 @@ void print_step(std::ostream& out, const Simulation<T>& sim, double wall_step, d
 
 // Steps, wall time, particle-steps per second (per core), peak memory per particle and the
 // seconds per step of each phase.
-template <class T>
-void print_summary(std::ostream& out, const Simulation<T>& sim, double steps, double wall,
+template <class T, class L>
+void print_summary(std::ostream& out, const Simulation<T, L>& sim, double steps, double wall,
                    double output_wall, int nranks, double rss_bytes) {
     const double n = double(sim.diagnostics().n);
     const double rate = steps > 0 ? n * steps / wall : 0.0;

@@ -62,25 +62,28 @@ inline InitialConditions<double> make_case(const Config& cfg, MPI_Comm comm = MP
     return c->make(req, case_context(cfg, comm, log));
 }
 
-// A run's simulation with what the outputs need of its initial conditions.
+// A run's simulation (its SPH passes on launcher L) with what the outputs need of its initial
+// conditions.
+template <class L>
 struct RunStart {
-    std::unique_ptr<Simulation<double>> sim;
+    std::unique_ptr<Simulation<double, L>> sim;
     std::string units;
     double case_t_end = 0; // 0: none
 };
 
 // Builds the simulation from a test case, an initial-conditions file or a checkpoint (which
 // restores the physics parameters of cfg).
-inline RunStart start_run(Config& cfg, MPI_Comm comm, std::ostream* log) {
+template <class L>
+RunStart<L> start_run(Config& cfg, MPI_Comm comm, std::ostream* log) {
     if (!cfg.restart_file.empty()) {
         auto cp = read_checkpoint<double>(cfg.restart_file, cfg, comm);
-        RunStart r{nullptr, cp.ic.units, cp.ic.t_end};
-        r.sim = std::make_unique<Simulation<double>>(cfg, std::move(cp.ic), cp.rs, comm);
+        RunStart<L> r{nullptr, cp.ic.units, cp.ic.t_end};
+        r.sim = std::make_unique<Simulation<double, L>>(cfg, std::move(cp.ic), cp.rs, comm);
         return r;
     }
     auto ic = make_case(cfg, comm, log);
-    RunStart r{nullptr, ic.units, ic.t_end};
-    r.sim = std::make_unique<Simulation<double>>(cfg, std::move(ic), comm);
+    RunStart<L> r{nullptr, ic.units, ic.t_end};
+    r.sim = std::make_unique<Simulation<double, L>>(cfg, std::move(ic), comm);
     return r;
 }
 

@@ -34,8 +34,7 @@ namespace exasph {
 template <class T, class L = DefaultLauncher>
 class Simulation {
   public:
-    // Restarts from a checkpoint's state.
-    Simulation(const Config& cfg, InitialConditions<T> ic, const RestartState& rs,
+    Simulation(const Config& cfg, InitialConditions<T> ic, const RestartState& rs, // restart
                MPI_Comm comm = MPI_COMM_WORLD)
         : Simulation(cfg, std::move(ic), comm, &rs) {}
 
@@ -53,6 +52,8 @@ class Simulation {
             start_stirring(box_, eos_, diag_, cfg.stir_mach >= 0 ? cfg.stir_mach : ic.stir_mach,
                            std::uint64_t(cfg.stir_seed), restart);
         if (stirring_) ps_.enable(Field::stir), diag_.e_stir = stirring_->state().energy_in;
+        if (stirring_ && L::kBackend == Backend::cuda) // its modes are in host memory
+            throw input_error("driven turbulence (--stir-mach) needs --backend cpu", true);
         if (gravity_) add_initial_potential_energy(comm);
         mass0_ = diag_.mass;
         safety_.seal(ps_, n_owned());
@@ -236,7 +237,6 @@ class Simulation {
     }
 
     RunPoint<T> run_point() const { return {restart_state(), box_, diag_}; }
-
     // The first diagnostics row needs the potential energy of the initial positions, before any
     // step has computed forces (sim/initial_potential.hpp).
     void add_initial_potential_energy(MPI_Comm comm) {
@@ -280,7 +280,7 @@ class Simulation {
     Box<T> box_;
     EosParams eos_;
     KernelTable<T> kernel_;
-    NeighbourLists<T> nlists_;
+    typename L::template Lists<T> nlists_; // the launcher's kind of neighbour lists
     Domain<T> domain_;
     SafetyNet<T> safety_;
     PhaseTimer<kNumPhases> timer_;

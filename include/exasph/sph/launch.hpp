@@ -4,6 +4,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "exasph/tree/batch_lists.hpp"
 #include "exasph/tree/neighbour_lists.hpp"
 
 // Launchers: how a per-particle kernel runs over the particles. A kernel is a functor with an
@@ -14,12 +15,13 @@
 // here, not by touching the kernels.
 namespace exasph {
 
-enum class Backend { openmp };
+// openmp: the CPU path (compact lists, OmpLauncher); gpu_host: the GPU path's lists and search
+// run by OpenMP on the host (GpuHostLauncher: tests the GPU path without a GPU); cuda: on the
+// device (src/cuda/).
+enum class Backend { openmp, gpu_host, cuda };
 
-// OpenMP threads of this rank: static schedule over particles, dynamic over leaf groups.
-struct OmpLauncher {
-    static constexpr Backend kBackend = Backend::openmp;
-
+// Particle-wise kernels on the OpenMP threads of this rank (static schedule).
+struct OmpParticleLoops {
     template <class Kernel>
     static void for_each(std::size_t n, const Kernel& k) {
         const auto nn = static_cast<std::int64_t>(n);
@@ -35,14 +37,24 @@ struct OmpLauncher {
         for (std::int64_t i = 0; i < nn; ++i) least = std::min(least, double(k(std::uint32_t(i))));
         return least;
     }
+};
+
+// Whether a neighbour kernel returns a number for the launcher to reduce.
+template <class Kernel>
+inline constexpr bool kReduces =
+    !std::is_void_v<std::invoke_result_t<const Kernel&, std::uint32_t, NeighbourSpan>>;
+
+// OpenMP threads of this rank: static schedule over particles, dynamic over leaf groups.
+struct OmpLauncher : OmpParticleLoops {
+    static constexpr Backend kBackend = Backend::openmp;
+    template <class T>
+    using Lists = NeighbourLists<T>;
 
     // Every particle with a list, in parallel over the leaf groups (each thread expands its
     // groups' lists into its own buffer). Returns the minimum of the kernel's results if it
     // returns a number (else +infinity).
     template <class T, class Kernel>
     static double for_each_neighbourhood(const NeighbourLists<T>& nl, const Kernel& k) {
-        constexpr bool kReduces =
-            !std::is_void_v<std::invoke_result_t<const Kernel&, std::uint32_t, NeighbourSpan>>;
         const auto groups = static_cast<std::int64_t>(nl.num_groups());
         double least = std::numeric_limits<double>::infinity();
 #pragma omp parallel reduction(min : least)
@@ -53,12 +65,35 @@ struct OmpLauncher {
                 dec.start(std::size_t(g));
                 const auto end = nl.group_end(std::size_t(g));
                 for (std::uint32_t i = nl.group_begin(std::size_t(g)); i < end; ++i) {
-                    if constexpr (kReduces)
+                    if constexpr (kReduces<Kernel>)
                         least = std::min(least, double(k(i, dec.next())));
                     else
                         k(i, dec.next());
                 }
             }
+        }
+        return least;
+    }
+};
+
+// The GPU path on the host: the device's interleaved lists and search (BatchLists), one particle
+// per iteration as one CUDA thread would run it. Same kernels, same results as OmpLauncher
+// (the lists hold the same neighbours in the same order).
+struct GpuHostLauncher : OmpParticleLoops {
+    static constexpr Backend kBackend = Backend::gpu_host;
+    template <class T>
+    using Lists = BatchLists<T>;
+
+    template <class T, class Kernel>
+    static double for_each_neighbourhood(const BatchLists<T>& nl, const Kernel& k) {
+        const auto n = static_cast<std::int64_t>(nl.size());
+        double least = std::numeric_limits<double>::infinity();
+#pragma omp parallel for schedule(dynamic, kBatch) reduction(min : least)
+        for (std::int64_t i = 0; i < n; ++i) {
+            if constexpr (kReduces<Kernel>)
+                least = std::min(least, double(k(std::uint32_t(i), nl.span(std::uint32_t(i)))));
+            else
+                k(std::uint32_t(i), nl.span(std::uint32_t(i)));
         }
         return least;
     }
@@ -70,6 +105,10 @@ struct LauncherFor;
 template <>
 struct LauncherFor<Backend::openmp> {
     using type = OmpLauncher;
+};
+template <>
+struct LauncherFor<Backend::gpu_host> {
+    using type = GpuHostLauncher;
 };
 using DefaultLauncher = LauncherFor<Backend::openmp>::type;
 

@@ -11,7 +11,6 @@
 #include "exasph/sph/momentum_energy_kern.hpp"
 #include "exasph/sph/stir_kern.hpp"
 #include "exasph/sph/update_kern.hpp"
-#include "exasph/tree/neighbour_lists.hpp"
 #include "exasph/util/error.hpp"
 
 // The SPH passes of a step: each builds its kernel (a functor from sph/*_kern.hpp) over a view of
@@ -20,8 +19,8 @@
 namespace exasph {
 
 // SPEC 3 and 4: density, EOS and the pressure-force coefficient (DensityEosKernel).
-template <class L = DefaultLauncher, class T>
-void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+template <class L = DefaultLauncher, class T, class Lists>
+void compute_density(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box,
                      const KernelView<T>& k, const EosParams& eos = {}, bool capture_rho0 = false) {
     with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
@@ -31,8 +30,8 @@ void compute_density(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<
 
 // SPEC 5. Throws Error naming a particle whose tau is singular. With `with_gradient`, also
 // stores the velocity gradient for the reconstructed artificial viscosity.
-template <class L = DefaultLauncher, class T>
-void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+template <class L = DefaultLauncher, class T, class Lists>
+void compute_iad(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box,
                  const KernelView<T>& k, bool with_gradient = false, bool own_k = false) {
     if (with_gradient) ps.enable(kHaloGrad);
     const double first = with_view(ps, [&](auto p) {
@@ -49,8 +48,8 @@ void compute_iad(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& 
 
 // SPEC 6; returns the Courant time step of SPEC 7 (min over the particles). One instantiation of
 // the pair loop per combination of options, chosen once per pass.
-template <class L = DefaultLauncher, class T>
-double compute_momentum_energy(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+template <class L = DefaultLauncher, class T, class Lists>
+double compute_momentum_energy(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box,
                                const KernelView<T>& k, const Dissipation<T>& diss = {},
                                T courant = T(0.2)) {
     return with_view(ps, [&](auto p) {
@@ -99,7 +98,6 @@ void update_viscosity(ParticleSet<T>& ps, std::size_t n, double dt, double alpha
     });
 }
 
-// Volume elements for the next step (VolumeWeightKernel).
 // The stirring force of driven turbulence, added to the acceleration (sph/stir_kern.hpp).
 template <class L = DefaultLauncher, class T>
 void add_stirring(ParticleSet<T>& ps, std::size_t n, const StirModes& modes) {
@@ -108,6 +106,7 @@ void add_stirring(ParticleSet<T>& ps, std::size_t n, const StirModes& modes) {
     });
 }
 
+// Volume elements for the next step (VolumeWeightKernel).
 template <class L = DefaultLauncher, class T>
 void update_volume_weights(ParticleSet<T>& ps, std::size_t n) {
     with_view(ps, [&](auto p) {
@@ -120,8 +119,8 @@ void update_volume_weights(ParticleSet<T>& ps, std::size_t n) {
 // a contact discontinuity of the initial conditions (the isobaric cube, the Kelvin-Helmholtz
 // layers) does not start with standard SPH's full pressure blip. exchange_x() sends X to the
 // halos.
-template <class L = DefaultLauncher, class T, class ExchangeX>
-void settle_volume_weights(ParticleSet<T>& ps, const NeighbourLists<T>& nl, const Box<T>& box,
+template <class L = DefaultLauncher, class T, class Lists, class ExchangeX>
+void settle_volume_weights(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box,
                            const KernelView<T>& k, const EosParams& eos, std::size_t n,
                            ExchangeX exchange_x, int passes = 4) {
     for (int pass = 0; pass < passes; ++pass) {

@@ -1,3 +1,4 @@
+#include <cstdlib>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -35,10 +36,39 @@ TEST(ParticleSet, PermuteMovesStateFieldsAndIds) {
     }
     ps.permute({2, 0, 1});
     EXPECT_EQ(ps.id, (std::vector<std::uint64_t>{12, 10, 11}));
-    EXPECT_EQ(ps[Field::x], (std::vector<double>{2, 0, 1}));
+    EXPECT_EQ(ps[Field::x], (FieldArray<double>{2, 0, 1}));
     EXPECT_NO_THROW(ps.validate());
     ps[Field::m][1] = 0;
     EXPECT_THROW(ps.validate(), Error);
+}
+
+namespace {
+long g_backend_bytes = 0;
+void* counting_allocate(std::size_t bytes) {
+    g_backend_bytes += long(bytes);
+    return std::malloc(bytes);
+}
+void counting_release(void* p) { std::free(p); }
+} // namespace
+
+// Issue 18: a backend's field memory (the CUDA backend's managed memory) serves every particle
+// field and kernel table made after it is installed, and cannot be swapped under live arrays.
+TEST(FieldMemory, AnInstalledAllocatorServesTheFieldsAndGuardsLiveArrays) {
+    {
+        ParticleSet<double> ps;
+        ps.resize(10);
+        EXPECT_THROW(install_field_memory({counting_allocate, counting_release, "counting"}),
+                     std::logic_error);
+    }
+    install_field_memory({counting_allocate, counting_release, "counting"});
+    {
+        ParticleSet<double> ps;
+        ps.resize(100);
+        EXPECT_GE(g_backend_bytes, long(100 * sizeof(double)) * 10);
+        EXPECT_STREQ(field_memory().name, "counting");
+    }
+    install_field_memory({});
+    EXPECT_STREQ(field_memory().name, "host");
 }
 
 TEST(BlockSum, IndependentOfThreadCount) {

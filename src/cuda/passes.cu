@@ -1,0 +1,46 @@
+// The CUDA launcher instantiated for every kernel that the passes of sph/passes.hpp hand it, in
+// the working precision double and both storages of the derived fields (float, double): the
+// host code (Simulation<double, CudaLauncher>) links against these. A pass that gains a kernel
+// adds its line here; the linker names any that is missing.
+#include "exasph/sph/density_kern.hpp"
+#include "exasph/sph/iad_kern.hpp"
+#include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/sph/stir_kern.hpp"
+#include "exasph/sph/update_kern.hpp"
+#include "launch.cuh"
+
+namespace exasph {
+
+#define EXASPH_CUDA_FOR_EACH(...)                                                                  \
+    template void CudaLauncher::for_each<__VA_ARGS__>(std::size_t, const __VA_ARGS__&);
+#define EXASPH_CUDA_REDUCE_MIN(...)                                                                \
+    template double CudaLauncher::reduce_min<__VA_ARGS__>(std::size_t, const __VA_ARGS__&);
+#define EXASPH_CUDA_NEIGHBOURS(...)                                                                \
+    template double CudaLauncher::for_each_neighbourhood<double, __VA_ARGS__>(                     \
+        const DeviceLists<double>&, const __VA_ARGS__&);
+
+#define EXASPH_CUDA_MOMENTUM(N)                                                                    \
+    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, false, false, false, N>)                   \
+    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, false, false, true, N>)                    \
+    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, false, true, false, N>)                    \
+    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, false, true, true, N>)                     \
+    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, true, false, false, N>)                    \
+    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, true, false, true, N>)                     \
+    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, true, true, false, N>)                     \
+    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, true, true, true, N>)
+
+#define EXASPH_CUDA_PASSES(N)                                                                      \
+    EXASPH_CUDA_NEIGHBOURS(DensityEosKernel<double, N>)                                            \
+    EXASPH_CUDA_NEIGHBOURS(IadKernel<double, N>)                                                   \
+    EXASPH_CUDA_MOMENTUM(N)                                                                        \
+    EXASPH_CUDA_FOR_EACH(StateUpdateKernel<double, N>)                                             \
+    EXASPH_CUDA_FOR_EACH(SmoothingLengthKernel<double, N>)                                         \
+    EXASPH_CUDA_FOR_EACH(ViscosityKernel<double, N>)                                               \
+    EXASPH_CUDA_FOR_EACH(VolumeWeightKernel<double, N>)                                            \
+    EXASPH_CUDA_FOR_EACH(StirKernel<double, N>)                                                    \
+    EXASPH_CUDA_REDUCE_MIN(AccelerationStepKernel<double, N>)
+
+EXASPH_CUDA_PASSES(float)
+EXASPH_CUDA_PASSES(double)
+
+} // namespace exasph
