@@ -4,7 +4,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "cli_parameters.hpp"
 #include "exasph/exact/noh.hpp"

@@ -58,10 +58,16 @@ expect_rejected "--ngmax" --ngmax 50
 expect_rejected "--courant" --courant 0
 expect_rejected "--t-end" --t-end -1
 expect_rejected "--threads" --threads 0
-expect_rejected "--av-limiter" -n 10 -s 1 -w 1 -f rho,dvx_dx
-# Optional fields exist only in runs that carry them (alpha: --av-switch, phi: gravity).
-expect_rejected "--av-switch" -n 10 -s 1 -w 1 -f rho,alpha
-expect_rejected "self-gravity" --init sedov -n 10 -s 1 -w 1 -f phi
+if "$exe" --version | grep -q "HDF5 off"; then
+    # A build without HDF5 (issue 18) refuses the options that need files, naming them.
+    expect_rejected "-w: this build has no HDF5" -n 10 -s 1 -w 1
+    expect_rejected "--restart" -n 10 --restart "$0"
+else
+    expect_rejected "--av-limiter" -n 10 -s 1 -w 1 -f rho,dvx_dx
+    # Optional fields exist only in runs that carry them (alpha: --av-switch, phi: gravity).
+    expect_rejected "--av-switch" -n 10 -s 1 -w 1 -f rho,alpha
+    expect_rejected "self-gravity" --init sedov -n 10 -s 1 -w 1 -f phi
+fi
 expect_rejected "carries no field" --init sedov -n 10 -s 2 --inject-fault 1:alpha:3:40
 expect_rejected "smoothing length" -n 4 -s 1
 expect_rejected "--theta" --init evrard --theta 1.5

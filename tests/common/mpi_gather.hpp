@@ -2,7 +2,7 @@
 #include <cstdint>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 namespace exasph::testref {
 

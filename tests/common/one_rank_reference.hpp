@@ -5,7 +5,7 @@
 #include <map>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 #include <omp.h>
 
 #include "exasph/run/setup.hpp"

@@ -87,8 +87,12 @@ def main(root):
                     problems.append(f"{h.relative_to(root)}: {layer}/ includes {inc}/")
             if layer == "cases":
                 code = strip_comments_and_strings(text)
-                if MPI_CALL.search(code) or "<mpi.h>" in text:
+                if MPI_CALL.search(code) or "util/mpi.hpp" in text:
                     problems.append(f"{h.relative_to(root)}: cases/ uses MPI")
+    # MPI comes through util/mpi.hpp, so that a build without MPI gets the single-rank stand-in.
+    for s in sources:
+        if "#include <mpi.h>" in s.read_text() and s.name != "mpi.hpp":
+            problems.append(f"{s.relative_to(root)}: includes <mpi.h> (use exasph/util/mpi.hpp)")
     for d in sorted((root / "include" / "exasph").iterdir()):
         if d.is_dir() and d.name not in LAYERS:
             problems.append(f"{d.relative_to(root)}: a folder that is not a layer of "

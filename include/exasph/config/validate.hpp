@@ -1,11 +1,23 @@
 #pragma once
 #include <string>
 
+#include "exasph/build_info.hpp"
 #include "exasph/config/choices.hpp"
 #include "exasph/config/config.hpp"
 #include "exasph/util/error.hpp"
 
 namespace exasph {
+
+// The option of cfg that needs HDF5 files (snapshots, checkpoints, restarts, initial conditions
+// from a file), or "" if none.
+inline std::string option_needing_files(const Config& cfg) {
+    if (cfg.snapshot_every_steps > 0 || cfg.snapshot_every_time > 0) return "-w";
+    if (cfg.checkpoint_every > 0 || cfg.checkpoint_auto) return "--checkpoint-every";
+    if (cfg.checkpoint_minutes > 0) return "--checkpoint-minutes";
+    if (!cfg.restart_file.empty()) return "--restart";
+    if (cfg.init.size() > 3 && cfg.init.ends_with(".h5")) return "--init " + cfg.init;
+    return "";
+}
 
 // The combinations of parameters that no single option's check can see (all ranks; input
 // errors, exit code 2).
@@ -21,6 +33,10 @@ inline void validate_config(const Config& cfg) {
         throw input_error("--mtbf is used only with --checkpoint-every auto", true);
     if (cfg.checkpoint_auto && cfg.checkpoint_minutes > 0)
         throw input_error("--checkpoint-every auto and --checkpoint-minutes exclude each other",
+                          true);
+    if (const std::string opt = option_needing_files(cfg); !kHaveHdf5 && !opt.empty())
+        throw input_error(opt + ": this build has no HDF5, which snapshots, checkpoints and "
+                                "initial-condition files need (configure with -DEXASPH_HDF5=ON)",
                           true);
 }
 

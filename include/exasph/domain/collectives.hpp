@@ -3,7 +3,7 @@
 #include <limits>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 namespace exasph {
 

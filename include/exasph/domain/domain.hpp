@@ -5,7 +5,7 @@
 #include <type_traits>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/domain/collectives.hpp"
 #include "exasph/domain/global_tree.hpp"

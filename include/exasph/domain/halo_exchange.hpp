@@ -2,7 +2,7 @@
 #include <cstdint>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/domain/particle_exchange.hpp"
 

@@ -3,7 +3,7 @@
 #include <cstring>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/util/error.hpp"

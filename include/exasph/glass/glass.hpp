@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/cases/initial_h.hpp"
 #include "exasph/cases/unit_cube_points.hpp"

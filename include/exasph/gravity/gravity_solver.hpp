@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/domain/collectives.hpp"
 #include "exasph/domain/global_tree.hpp"

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <string>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/util/error.hpp"
 

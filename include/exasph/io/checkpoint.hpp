@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/config/config.hpp"

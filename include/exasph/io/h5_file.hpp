@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 namespace exasph::h5 {
 

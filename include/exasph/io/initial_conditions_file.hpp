@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <string>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/io/h5_file.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/io/h5_file.hpp"
 #include "exasph/particles/particle_set.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/config/config.hpp"
 #include "exasph/io/atomic_output.hpp"

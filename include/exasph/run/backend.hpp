@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/build_info.hpp"
 #include "exasph/config/config.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 #include <cmath>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/util/error.hpp"
 

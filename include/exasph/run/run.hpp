@@ -11,7 +11,7 @@
 #include <omp.h>
 #endif
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/config/validate.hpp"
 #include "exasph/io/checkpoint.hpp"
@@ -116,7 +116,7 @@ class RunDriver {
             if (schedule_->snapshot_due(sim_->step_count(), sim_->time())) snapshot();
             const bool stop = sim_->flag(kStopRequested);
             if (schedule_->checkpoint_due(sim_->step_count()) || sim_->flag(kCheckpointByClock) ||
-                stop)
+                (stop && kHaveHdf5)) // a build without HDF5 stops without a checkpoint
                 checkpoint();
             if (stop) {
                 if (root()) out_ << "stopped by a signal after step " << sim_->step_count() << "\n";

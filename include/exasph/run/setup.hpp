@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/cases/registry.hpp"
 #include "exasph/config/config.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 #include <cstdint>
 
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/config/config.hpp"
 #include "exasph/domain/domain.hpp"

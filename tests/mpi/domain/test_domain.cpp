@@ -6,7 +6,7 @@
 #include <set>
 
 #include <gtest/gtest.h>
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "brute_force_neighbours.hpp"
 #include "exasph/domain/domain.hpp"

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 #include <omp.h>
 
 #include "case_config.hpp"

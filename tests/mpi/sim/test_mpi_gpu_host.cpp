@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 #include <omp.h>
 
 #include "case_config.hpp"

@@ -7,7 +7,7 @@
 #include <set>
 
 #include <gtest/gtest.h>
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 #include <omp.h>
 
 #include "exasph/run/setup.hpp"

@@ -4,7 +4,7 @@
 #include <random>
 
 #include <gtest/gtest.h>
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "direct_gravity.hpp"
 #include "exasph/cases/evrard.hpp"

@@ -2,7 +2,7 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/run/checkpoint_interval.hpp"
 

@@ -13,7 +13,7 @@
 #include <random>
 
 #include <gtest/gtest.h>
-#include <mpi.h>
+#include "exasph/util/mpi.hpp"
 
 #include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
