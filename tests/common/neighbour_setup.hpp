@@ -9,9 +9,10 @@
 namespace exasph::testref {
 
 // Sorts the particles along the Hilbert curve and builds their neighbour lists with `crit`, as
-// one rank's step does before the density.
-inline void sort_and_find_neighbours(ParticleSet<double>& ps, const Box<double>& box,
-                                     NeighbourCriterion crit, NeighbourLists<double>& nl) {
+// one rank's step does before the density (any kind of lists: CPU, or the GPU path's).
+template <class Lists = NeighbourLists<double>>
+void sort_and_find_neighbours(ParticleSet<double>& ps, const Box<double>& box,
+                              NeighbourCriterion crit, Lists& nl) {
     auto keys = sort_along_curve(ps, box, CurveKind::hilbert);
     Octree<double> tree;
     tree.build(keys.data(), std::uint32_t(ps.size()), 64);

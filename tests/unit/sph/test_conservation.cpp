@@ -23,6 +23,8 @@ struct Sums {
 
 // `tension`: a Tait EOS whose pressure is the particle's p0, drawn from [-1, 1] (the reference
 // density is the measured one), so that about half the particles are under tension.
+// L: the launcher (the CPU path, or the GPU path's lists and search run on the host).
+template <class L = OmpLauncher>
 Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false,
                        const Dissipation<double>& diss = {}, bool tension = false) {
     Box<double> box;
@@ -48,7 +50,7 @@ Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false,
     ps.enable(Field::alpha); // per-particle alpha (as with the AV switch), varied
     std::uniform_real_distribution<double> alpha(0.2, 1.5);
     for (auto& a : ps[Field::alpha]) a = alpha(rng);
-    NeighbourLists<double> nl;
+    typename L::template Lists<double> nl;
     testref::sort_and_find_neighbours(ps, box, crit, nl);
     const auto& k = testref::sinc6();
     EosParams eos;
@@ -59,9 +61,9 @@ Sums conservation_sums(NeighbourCriterion crit, bool volume_elements = false,
         std::uniform_real_distribution<double> p0(-1, 1);
         for (auto& p : ps[Field::p0]) p = p0(rng);
     }
-    compute_density(ps, nl, box, k.view(), eos, tension);
-    compute_iad(ps, nl, box, k.view(), diss.reconstruct);
-    compute_momentum_energy(ps, nl, box, k.view(), diss);
+    compute_density<L>(ps, nl, box, k.view(), eos, tension);
+    compute_iad<L>(ps, nl, box, k.view(), diss.reconstruct);
+    compute_momentum_energy<L>(ps, nl, box, k.view(), diss);
 
     double sum_ma[3] = {0, 0, 0}, sum_abs_ma = 0, sum_e = 0, sum_abs_va = 0;
     std::size_t approaching = 0;
@@ -137,4 +139,28 @@ TEST(Conservation, GatherOnlyNeighboursDoNot) {
     Sums s = conservation_sums(NeighbourCriterion::gather);
     std::printf("gather: momentum %.3e energy %.3e\n", s.momentum_ratio, s.energy_ratio);
     EXPECT_GT(s.momentum_ratio, 1e-8);
+}
+
+// Issue 18, acceptance 2: the GPU path (GpuHostLauncher: the device's search and interleaved
+// lists) conserves as the CPU path does, with every option of the pair loop.
+TEST(Conservation, GpuPathConservesMomentumAndEnergyWithEveryOption) {
+    using G = GpuHostLauncher;
+    const auto sym = NeighbourCriterion::symmetric;
+    Dissipation<double> limiter;
+    limiter.reconstruct = true;
+    limiter.eta_crit = 0.7;
+    Dissipation<double> stress;
+    stress.eta_crit = 0.7;
+    stress.tensile = 0.2;
+    const Sums runs[] = {conservation_sums<G>(sym), conservation_sums<G>(sym, true),
+                         conservation_sums<G>(sym, true, Dissipation<double>{1.0}),
+                         conservation_sums<G>(sym, false, limiter),
+                         conservation_sums<G>(sym, false, stress, true)};
+    for (const Sums& s : runs) {
+        std::printf("GPU path: momentum %.3e energy %.3e\n", s.momentum_ratio, s.energy_ratio);
+        EXPECT_LT(s.momentum_ratio, 1e-12);
+        EXPECT_LT(s.energy_ratio, 1e-10);
+    }
+    // the same forces as the CPU path
+    EXPECT_DOUBLE_EQ(runs[0].force_sum, conservation_sums(sym).force_sum);
 }
