@@ -2,8 +2,6 @@
 // the CPU path in the same process. Sedov -n 50 (5 steps, standard scheme, derived fields in
 // double) and the square patch (20 steps): every particle's rho, v, u and a within 1e-10 of the
 // field's scale, and the conservation sums alike. Run by bench/gpu/check.sh on the device.
-#include <algorithm>
-#include <cmath>
 #include <cstdlib>
 
 #include <gtest/gtest.h>
@@ -13,23 +11,12 @@
 #include "exasph/sim/simulation.hpp"
 #include "exasph/sph/cuda_launcher.hpp"
 #include "exasph/util/cuda_runtime.hpp"
-#include "one_rank_reference.hpp"
+#include "launcher_comparison.hpp"
 
 using namespace exasph;
 using namespace exasph::testref;
 
 namespace {
-
-template <class L>
-std::vector<ParticleState> run(const Config& cfg, int steps, Diagnostics* diag) {
-    Simulation<double, L> sim(cfg, make_case(cfg));
-    for (int s = 0; s < steps; ++s) sim.step();
-    EXPECT_EQ(sim.recoveries(), 0);
-    *diag = sim.diagnostics();
-    auto st = owned_state(sim);
-    std::sort(st.begin(), st.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
-    return st;
-}
 
 // The first test to run selects the device and puts the fields in managed memory.
 bool have_device() {
@@ -43,22 +30,7 @@ bool have_device() {
 
 void expect_same_run(Config cfg, int steps) {
     cfg.double_precision = true; // the comparison is of the arithmetic, not of float storage
-    Diagnostics cpu_diag, gpu_diag;
-    const auto cpu = run<OmpLauncher>(cfg, steps, &cpu_diag);
-    const auto gpu = run<CudaLauncher>(cfg, steps, &gpu_diag);
-    ASSERT_EQ(cpu.size(), gpu.size());
-    OneRankReference ref;
-    for (const auto& s : cpu) ref.state[s.id] = s;
-    const Differences d = compare_to_reference(gpu, ref);
-    std::printf("%s -n %d, %d steps: GPU vs CPU: rho %.2e v %.2e u %.2e a %.2e\n",
-                cfg.init.c_str(), cfg.side, steps, d.rho, d.v, d.u, d.a);
-    EXPECT_LT(d.rho, 1e-10);
-    EXPECT_LT(d.v, 1e-10);
-    EXPECT_LT(d.u, 1e-10);
-    EXPECT_LT(d.a, 1e-10);
-    EXPECT_NEAR(gpu_diag.etot, cpu_diag.etot, 1e-10 * std::abs(cpu_diag.etot));
-    for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(gpu_diag.momentum[c], cpu_diag.momentum[c], 1e-10 * cpu_diag.momentum_abs);
+    expect_same_as_cpu<CudaLauncher>(cfg, steps, 1e-10, "GPU");
 }
 
 } // namespace
