@@ -3,8 +3,8 @@
 #include <iostream>
 #include <string>
 
-#include <CLI/CLI.hpp>
 #include "exasph/util/mpi.hpp"
+#include <CLI/CLI.hpp>
 
 #include "cli_parameters.hpp"
 #include "exasph/build_info.hpp"

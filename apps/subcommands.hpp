@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <string>
 
-#include <CLI/CLI.hpp>
 #include "exasph/util/mpi.hpp"
+#include <CLI/CLI.hpp>
 
 #include "cli_parameters.hpp"
 #include "exasph/exact/noh.hpp"

@@ -7,7 +7,9 @@
 
 namespace exasph {
 
-DeviceBuffer::~DeviceBuffer() { release(); }
+DeviceBuffer::~DeviceBuffer() {
+    release();
+}
 
 void* DeviceBuffer::reserve(std::size_t bytes) {
     if (bytes <= bytes_ && ptr_) return ptr_;
@@ -27,7 +29,9 @@ namespace {
 
 constexpr unsigned kThreads = 128;
 
-unsigned blocks_for(std::size_t n) { return unsigned((n + kThreads - 1) / kThreads); }
+unsigned blocks_for(std::size_t n) {
+    return unsigned((n + kThreads - 1) / kThreads);
+}
 
 // Pass 1: the count of every list; pass 2 (index non-null): the lists, at their slots.
 template <class T>
@@ -41,8 +45,8 @@ __global__ void search_kernel(TreeView<T> owned, TreeView<T> halos, SearchView<T
         return;
     }
     const NeighbourSpan s = BatchLayout::span(index, offset, count, i);
-    search_particle(owned, halos, p, box, symmetric, i, const_cast<std::uint32_t*>(s.index),
-                    kBatch, s.count);
+    search_particle(owned, halos, p, box, symmetric, i, const_cast<std::uint32_t*>(s.index), kBatch,
+                    s.count);
 }
 
 // The node arrays of both trees, copied after each other into one device buffer.
@@ -51,13 +55,14 @@ void copy_trees(const Octree<T>& owned, const Octree<T>* halos, DeviceBuffer& bu
                 TreeView<T>& own_view, TreeView<T>& halo_view) {
     const std::size_t n_own = owned.nodes().size();
     const std::size_t n_halo = halos ? halos->nodes().size() : 0;
-    auto* nodes = static_cast<OctreeNode<T>*>(buf.reserve((n_own + n_halo) * sizeof(OctreeNode<T>)));
+    auto* nodes =
+        static_cast<OctreeNode<T>*>(buf.reserve((n_own + n_halo) * sizeof(OctreeNode<T>)));
     cuda::check(cudaMemcpy(nodes, owned.nodes().data(), n_own * sizeof(OctreeNode<T>),
                            cudaMemcpyHostToDevice),
                 "copying the tree to the device");
     if (n_halo)
-        cuda::check(cudaMemcpy(nodes + n_own, halos->nodes().data(),
-                               n_halo * sizeof(OctreeNode<T>), cudaMemcpyHostToDevice),
+        cuda::check(cudaMemcpy(nodes + n_own, halos->nodes().data(), n_halo * sizeof(OctreeNode<T>),
+                               cudaMemcpyHostToDevice),
                     "copying the halo tree to the device");
     own_view = {nodes, std::uint32_t(n_own)};
     halo_view = {nodes + n_own, std::uint32_t(n_halo)};
@@ -66,11 +71,9 @@ void copy_trees(const Octree<T>& owned, const Octree<T>* halos, DeviceBuffer& bu
 } // namespace
 
 template <class T>
-typename DeviceLists<T>::Result DeviceLists<T>::build(const Octree<T>& owned,
-                                                      const Octree<T>* halos,
-                                                      const SearchView<T>& p, const Box<T>& box,
-                                                      NeighbourCriterion crit,
-                                                      std::uint32_t n_owned) {
+typename DeviceLists<T>::Result
+DeviceLists<T>::build(const Octree<T>& owned, const Octree<T>* halos, const SearchView<T>& p,
+                      const Box<T>& box, NeighbourCriterion crit, std::uint32_t n_owned) {
     T hmax = owned.empty() ? T(0) : owned.nodes()[0].hmax;
     if (halos && !halos->empty()) hmax = std::max(hmax, halos->nodes()[0].hmax);
     check_periodic_reach(box, hmax);
@@ -80,17 +83,17 @@ typename DeviceLists<T>::Result DeviceLists<T>::build(const Octree<T>& owned,
     const bool sym = crit == NeighbourCriterion::symmetric;
     auto* count = static_cast<std::uint32_t*>(count_.reserve(n_ * sizeof(std::uint32_t)));
     if (n_ > 0) {
-        search_kernel<<<blocks_for(n_), kThreads>>>(own, halo, p, box, sym, n_owned, count,
-                                                     nullptr, nullptr);
+        search_kernel<<<blocks_for(n_), kThreads>>>(own, halo, p, box, sym, n_owned, count, nullptr,
+                                                    nullptr);
         cuda::check(cudaGetLastError(), "launching the neighbour count");
     }
     host_count_.resize(n_);
-    cuda::check(cudaMemcpy(host_count_.data(), count, n_ * sizeof(std::uint32_t),
-                           cudaMemcpyDeviceToHost),
-                "counting neighbours");
+    cuda::check(
+        cudaMemcpy(host_count_.data(), count, n_ * sizeof(std::uint32_t), cudaMemcpyDeviceToHost),
+        "counting neighbours");
     max_count_ = BatchLayout::size_batches(host_count_, host_offset_);
-    auto* offset = static_cast<std::uint64_t*>(
-        offset_.reserve(host_offset_.size() * sizeof(std::uint64_t)));
+    auto* offset =
+        static_cast<std::uint64_t*>(offset_.reserve(host_offset_.size() * sizeof(std::uint64_t)));
     cuda::check(cudaMemcpy(offset, host_offset_.data(), host_offset_.size() * sizeof(std::uint64_t),
                            cudaMemcpyHostToDevice),
                 "copying the batch offsets");
@@ -98,7 +101,7 @@ typename DeviceLists<T>::Result DeviceLists<T>::build(const Octree<T>& owned,
         static_cast<std::uint32_t*>(index_.reserve(host_offset_.back() * sizeof(std::uint32_t)));
     if (n_ > 0) {
         search_kernel<<<blocks_for(n_), kThreads>>>(own, halo, p, box, sym, n_owned, count, offset,
-                                                     index);
+                                                    index);
         cuda::check(cudaGetLastError(), "launching the neighbour search");
     }
     cuda::check(cudaDeviceSynchronize(), "searching neighbours");

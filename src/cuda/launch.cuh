@@ -19,7 +19,9 @@ namespace cuda_detail {
 
 constexpr unsigned kThreads = 128;
 
-inline unsigned blocks_for(std::size_t n) { return unsigned((n + kThreads - 1) / kThreads); }
+inline unsigned blocks_for(std::size_t n) {
+    return unsigned((n + kThreads - 1) / kThreads);
+}
 
 // The minimum of v over the block, written by thread 0 to out[blockIdx.x].
 __device__ inline void block_min(double v, double* out) {
@@ -71,9 +73,9 @@ class BlockMinima {
     ~BlockMinima() { cudaFree(dev_); }
     double* device() { return dev_; }
     double least() {
-        cuda::check(cudaMemcpy(host_.data(), dev_, host_.size() * sizeof(double),
-                               cudaMemcpyDeviceToHost),
-                    "reading a reduction");
+        cuda::check(
+            cudaMemcpy(host_.data(), dev_, host_.size() * sizeof(double), cudaMemcpyDeviceToHost),
+            "reading a reduction");
         double m = std::numeric_limits<double>::infinity();
         for (double v : host_) m = std::min(m, v);
         return m;
@@ -94,8 +96,8 @@ inline void finish(const char* what) {
 template <class Kernel>
 void CudaLauncher::for_each(std::size_t n, const Kernel& k) {
     if (n == 0) return;
-    cuda_detail::particles<<<cuda_detail::blocks_for(n), cuda_detail::kThreads>>>(
-        k, std::uint32_t(n));
+    cuda_detail::particles<<<cuda_detail::blocks_for(n), cuda_detail::kThreads>>>(k,
+                                                                                  std::uint32_t(n));
     cuda_detail::finish("running a particle pass");
 }
 
@@ -105,7 +107,7 @@ double CudaLauncher::reduce_min(std::size_t n, const Kernel& k) {
     const unsigned blocks = cuda_detail::blocks_for(n);
     cuda_detail::BlockMinima minima(blocks);
     cuda_detail::particles_min<<<blocks, cuda_detail::kThreads>>>(k, std::uint32_t(n),
-                                                                   minima.device());
+                                                                  minima.device());
     cuda_detail::finish("running a particle reduction");
     return minima.least();
 }

@@ -19,11 +19,15 @@ void* allocate_managed(std::size_t bytes) {
     if (cudaMallocManaged(&p, bytes == 0 ? 1 : bytes) != cudaSuccess) return nullptr;
     return p;
 }
-void release_managed(void* p) { cudaFree(p); }
+void release_managed(void* p) {
+    cudaFree(p);
+}
 
 } // namespace
 
-bool built() { return true; }
+bool built() {
+    return true;
+}
 
 int visible_devices() {
     int count = 0;
@@ -37,7 +41,9 @@ int visible_devices() {
     return count;
 }
 
-std::string no_device_reason() { return g_reason; }
+std::string no_device_reason() {
+    return g_reason;
+}
 
 std::string use_device(int rank) {
     const int count = visible_devices();
@@ -51,8 +57,8 @@ std::string use_device(int rank) {
     check(cudaGetDeviceProperties(&prop, device), "reading the device's properties");
     install_field_memory({allocate_managed, release_managed, "cuda managed"});
     return std::string(prop.name) + " (device " + std::to_string(device) + " of " +
-           std::to_string(count) + ", " + std::to_string(prop.totalGlobalMem >> 30) +
-           " GiB, sm_" + std::to_string(prop.major) + std::to_string(prop.minor) + ")";
+           std::to_string(count) + ", " + std::to_string(prop.totalGlobalMem >> 30) + " GiB, sm_" +
+           std::to_string(prop.major) + std::to_string(prop.minor) + ")";
 }
 
 } // namespace exasph::cuda

@@ -4,12 +4,18 @@
 
 namespace exasph::cuda {
 
-bool built() { return false; }
-int visible_devices() { return 0; }
+bool built() {
+    return false;
+}
+int visible_devices() {
+    return 0;
+}
 std::string no_device_reason() {
     return "this build has no CUDA backend (nvcc was not found when it was configured, or "
            "-DEXASPH_CUDA=OFF)";
 }
-std::string use_device(int) { throw input_error("--backend cuda: " + no_device_reason(), true); }
+std::string use_device(int) {
+    throw input_error("--backend cuda: " + no_device_reason(), true);
+}
 
 } // namespace exasph::cuda

@@ -16,8 +16,12 @@ namespace {
 
 } // namespace
 
-File File::create(const std::string& path, MPI_Comm) { no_hdf5(path, 3); }
-File File::open_read(const std::string& path, MPI_Comm) { no_hdf5(path, 2); }
+File File::create(const std::string& path, MPI_Comm) {
+    no_hdf5(path, 3);
+}
+File File::open_read(const std::string& path, MPI_Comm) {
+    no_hdf5(path, 2);
+}
 File::File(File&& o) noexcept : id_(o.id_), path_(std::move(o.path_)), comm_(o.comm_) {}
 File::~File() = default;
 void File::close() {}
@@ -26,11 +30,17 @@ Group::Group(const File& f, const std::string& name, bool) : file_(f), id_(-1), 
 }
 Group::Group(Group&& o) noexcept : file_(o.file_), id_(o.id_), name_(std::move(o.name_)) {}
 Group::~Group() = default;
-bool has_link(const Group& g, const std::string&) { no_hdf5(g.file().path(), 2); }
-bool has_attribute(const Group& g, const std::string&) { no_hdf5(g.file().path(), 2); }
-std::vector<std::string> member_names(const Group& g) { no_hdf5(g.file().path(), 2); }
-void write_doubles(const Group& g, const std::string&, const double*, std::uint64_t,
-                   std::uint64_t, std::uint64_t) {
+bool has_link(const Group& g, const std::string&) {
+    no_hdf5(g.file().path(), 2);
+}
+bool has_attribute(const Group& g, const std::string&) {
+    no_hdf5(g.file().path(), 2);
+}
+std::vector<std::string> member_names(const Group& g) {
+    no_hdf5(g.file().path(), 2);
+}
+void write_doubles(const Group& g, const std::string&, const double*, std::uint64_t, std::uint64_t,
+                   std::uint64_t) {
     no_hdf5(g.file().path(), 3);
 }
 void write_u64(const Group& g, const std::string&, const std::uint64_t*, std::uint64_t,
@@ -40,15 +50,16 @@ void write_u64(const Group& g, const std::string&, const std::uint64_t*, std::ui
 std::uint64_t dataset_length(const Group& g, const std::string&, bool) {
     no_hdf5(g.file().path(), 2);
 }
-std::vector<double> read_doubles(const Group& g, const std::string&, std::uint64_t,
-                                 std::uint64_t) {
+std::vector<double> read_doubles(const Group& g, const std::string&, std::uint64_t, std::uint64_t) {
     no_hdf5(g.file().path(), 2);
 }
 std::vector<std::uint64_t> read_u64(const Group& g, const std::string&, std::uint64_t,
                                     std::uint64_t) {
     no_hdf5(g.file().path(), 2);
 }
-void write_attribute(const Group& g, const std::string&, double) { no_hdf5(g.file().path(), 3); }
+void write_attribute(const Group& g, const std::string&, double) {
+    no_hdf5(g.file().path(), 3);
+}
 void write_attribute(const Group& g, const std::string&, std::int64_t) {
     no_hdf5(g.file().path(), 3);
 }

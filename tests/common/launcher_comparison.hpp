@@ -35,8 +35,8 @@ void expect_same_as_cpu(const Config& cfg, int steps, double tol, const char* wh
     OneRankReference ref;
     for (const auto& s : cpu) ref.state[s.id] = s;
     const Differences d = compare_to_reference(other, ref);
-    std::printf("%s -n %d, %d steps: %s vs CPU: rho %.2e v %.2e u %.2e a %.2e\n",
-                cfg.init.c_str(), cfg.side, steps, what, d.rho, d.v, d.u, d.a);
+    std::printf("%s -n %d, %d steps: %s vs CPU: rho %.2e v %.2e u %.2e a %.2e\n", cfg.init.c_str(),
+                cfg.side, steps, what, d.rho, d.v, d.u, d.a);
     EXPECT_LT(d.rho, tol);
     EXPECT_LT(d.v, tol);
     EXPECT_LT(d.u, tol);

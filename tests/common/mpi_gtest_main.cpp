@@ -1,7 +1,7 @@
 // GoogleTest main for exasph: initialises MPI (the simulation and domain always use it) and,
 // under mpirun, lets only rank 0 print while every rank's failures still fail the run.
-#include <gtest/gtest.h>
 #include "exasph/util/mpi.hpp"
+#include <gtest/gtest.h>
 
 int main(int argc, char** argv) {
     int provided = 0;

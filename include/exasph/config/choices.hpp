@@ -40,7 +40,8 @@ struct Choices<Scheme> {
 template <>
 struct Choices<BackendChoice> {
     static constexpr std::array<std::pair<std::string_view, BackendChoice>, 3> values{
-        {{"cpu", BackendChoice::cpu}, {"cuda", BackendChoice::cuda},
+        {{"cpu", BackendChoice::cpu},
+         {"cuda", BackendChoice::cuda},
          {"auto", BackendChoice::automatic}}};
 };
 

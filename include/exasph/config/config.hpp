@@ -8,9 +8,9 @@
 namespace exasph {
 
 // Closed choices of the command line (their names: config/choices.hpp).
-enum class SdcPolicy { rollback, abort, off }; // --on-sdc
-enum class RollbackStore { disk, memory };     // --sdc-rollback-store
-enum class Scheme { std_sph, ve, wc };         // --scheme (config/scheme.hpp)
+enum class SdcPolicy { rollback, abort, off };     // --on-sdc
+enum class RollbackStore { disk, memory };         // --sdc-rollback-store
+enum class Scheme { std_sph, ve, wc };             // --scheme (config/scheme.hpp)
 enum class BackendChoice { cpu, cuda, automatic }; // --backend (run/backend.hpp)
 
 // Everything a run is configured with. Each member that the command line sets is declared
@@ -49,12 +49,12 @@ struct Config {
     int sdc_rollback_every = 10;            // steps between rollback points
     // Disk by default: the copy in memory would add ~112 B to the ~300 B a particle needs.
     RollbackStore sdc_rollback_store = RollbackStore::disk;
-    std::string sdc_rollback_dir; // empty: out_dir
-    std::string inject_fault;     // STEP:FIELD:ID:BIT (tests)
-    int threads = 0;              // 0: OpenMP default
+    std::string sdc_rollback_dir;                     // empty: out_dir
+    std::string inject_fault;                         // STEP:FIELD:ID:BIT (tests)
+    int threads = 0;                                  // 0: OpenMP default
     BackendChoice backend = BackendChoice::automatic; // where the SPH passes run
-    int leaf_size = 64;           // local octree leaf size
-    int global_bucket = 128;      // global (top) tree leaf size: the unit of MPI load balance
+    int leaf_size = 64;                               // local octree leaf size
+    int global_bucket = 128; // global (top) tree leaf size: the unit of MPI load balance
     CurveKind curve = CurveKind::hilbert;
     bool lattice = false; // glass cases: regular lattice instead of the (cached) glass
     std::vector<std::string> case_params; // --param KEY=VALUE: case parameters

@@ -20,8 +20,8 @@ namespace exasph {
 
 // SPEC 3 and 4: density, EOS and the pressure-force coefficient (DensityEosKernel).
 template <class L = DefaultLauncher, class T, class Lists>
-void compute_density(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box,
-                     const KernelView<T>& k, const EosParams& eos = {}, bool capture_rho0 = false) {
+void compute_density(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const KernelView<T>& k,
+                     const EosParams& eos = {}, bool capture_rho0 = false) {
     with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
         L::for_each_neighbourhood(nl, DensityEosKernel<T, N>{p, box, k, eos, capture_rho0});
@@ -31,8 +31,8 @@ void compute_density(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box,
 // SPEC 5. Throws Error naming a particle whose tau is singular. With `with_gradient`, also
 // stores the velocity gradient for the reconstructed artificial viscosity.
 template <class L = DefaultLauncher, class T, class Lists>
-void compute_iad(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box,
-                 const KernelView<T>& k, bool with_gradient = false, bool own_k = false) {
+void compute_iad(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const KernelView<T>& k,
+                 bool with_gradient = false, bool own_k = false) {
     if (with_gradient) ps.enable(kHaloGrad);
     const double first = with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;

@@ -29,7 +29,8 @@ struct BatchLayout {
         std::uint32_t longest = 0;
         for (std::size_t b = 0; b < batches; ++b) {
             const auto first = count.begin() + std::ptrdiff_t(b * kBatch);
-            const auto last = count.begin() + std::ptrdiff_t(std::min(count.size(), (b + 1) * kBatch));
+            const auto last =
+                count.begin() + std::ptrdiff_t(std::min(count.size(), (b + 1) * kBatch));
             const std::uint32_t width = *std::max_element(first, last);
             longest = std::max(longest, width);
             offset[b + 1] = offset[b] + std::uint64_t(width) * kBatch;
@@ -57,9 +58,9 @@ class BatchLists {
         if (halos && !halos->empty()) hmax = std::max(hmax, halos->nodes()[0].hmax);
         check_periodic_reach(box, hmax);
         const TreeView<T> own{owned.nodes().data(), std::uint32_t(owned.nodes().size())};
-        const TreeView<T> halo = halos ? TreeView<T>{halos->nodes().data(),
-                                                     std::uint32_t(halos->nodes().size())}
-                                       : TreeView<T>{};
+        const TreeView<T> halo =
+            halos ? TreeView<T>{halos->nodes().data(), std::uint32_t(halos->nodes().size())}
+                  : TreeView<T>{};
         const bool sym = crit == NeighbourCriterion::symmetric;
         count_.resize(n_owned);
         const auto n = std::int64_t(n_owned);
@@ -82,8 +83,12 @@ class BatchLists {
         return build(tree, nullptr, p, box, crit, n);
     }
 
-    std::size_t size() const { return count_.size(); }
-    std::uint32_t max_count() const { return max_count_; }
+    std::size_t size() const {
+        return count_.size();
+    }
+    std::uint32_t max_count() const {
+        return max_count_;
+    }
     NeighbourSpan span(std::uint32_t i) const {
         return BatchLayout::span(index_.data(), offset_.data(), count_.data(), i);
     }

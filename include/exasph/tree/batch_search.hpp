@@ -44,10 +44,10 @@ EXASPH_HD EXASPH_INLINE bool is_pair(const SearchView<T>& p, const PeriodicImage
 // Walks `tree` for particle i; each neighbour j goes to out[(found + k) * stride] while found + k
 // < cap. Returns the number found in this tree.
 template <class T>
-EXASPH_HD std::uint32_t walk_tree(const TreeView<T>& tree, const SearchView<T>& p, const Box<T>& box,
-                                  const PeriodicImage<T>& im, bool symmetric, std::uint32_t i,
-                                  std::uint32_t found, std::uint32_t* out, std::uint32_t stride,
-                                  std::uint32_t cap) {
+EXASPH_HD std::uint32_t walk_tree(const TreeView<T>& tree, const SearchView<T>& p,
+                                  const Box<T>& box, const PeriodicImage<T>& im, bool symmetric,
+                                  std::uint32_t i, std::uint32_t found, std::uint32_t* out,
+                                  std::uint32_t stride, std::uint32_t cap) {
     if (tree.count == 0) return 0;
     const T pos[3] = {p.x[i], p.y[i], p.z[i]};
     const T hi = p.h[i];
@@ -77,9 +77,9 @@ EXASPH_HD std::uint32_t walk_tree(const TreeView<T>& tree, const SearchView<T>& 
 // `cap` (cap 0 with out null: only counts). Returns the true count.
 template <class T>
 EXASPH_HD std::uint32_t search_particle(const TreeView<T>& owned, const TreeView<T>& halos,
-                                        const SearchView<T>& p, const Box<T>& box,
-                                        bool symmetric, std::uint32_t i, std::uint32_t* out,
-                                        std::uint32_t stride, std::uint32_t cap) {
+                                        const SearchView<T>& p, const Box<T>& box, bool symmetric,
+                                        std::uint32_t i, std::uint32_t* out, std::uint32_t stride,
+                                        std::uint32_t cap) {
     const PeriodicImage<T> im(box);
     const std::uint32_t n = walk_tree(owned, p, box, im, symmetric, i, 0, out, stride, cap);
     return n + walk_tree(halos, p, box, im, symmetric, i, n, out, stride, cap);

@@ -28,7 +28,9 @@ inline std::atomic<long>& live_field_arrays() {
 }
 } // namespace detail
 
-inline const FieldMemory& field_memory() { return detail::field_memory_state(); }
+inline const FieldMemory& field_memory() {
+    return detail::field_memory_state();
+}
 
 // Installs `m` for every later FieldArray. Throws if any array is alive: it would be released by
 // the wrong allocator.

@@ -85,15 +85,27 @@ inline int MPI_Finalized(int* flag) {
     *flag = exasph::serial_mpi::state().finalized;
     return MPI_SUCCESS;
 }
-inline int MPI_Abort(MPI_Comm, int code) { std::exit(code); }
-inline int MPI_Comm_rank(MPI_Comm, int* rank) { return *rank = 0, MPI_SUCCESS; }
-inline int MPI_Comm_size(MPI_Comm, int* size) { return *size = 1, MPI_SUCCESS; }
+inline int MPI_Abort(MPI_Comm, int code) {
+    std::exit(code);
+}
+inline int MPI_Comm_rank(MPI_Comm, int* rank) {
+    return *rank = 0, MPI_SUCCESS;
+}
+inline int MPI_Comm_size(MPI_Comm, int* size) {
+    return *size = 1, MPI_SUCCESS;
+}
 inline int MPI_Comm_split_type(MPI_Comm comm, int, int, MPI_Info, MPI_Comm* out) {
     return *out = comm, MPI_SUCCESS;
 }
-inline int MPI_Comm_free(MPI_Comm*) { return MPI_SUCCESS; }
-inline int MPI_Barrier(MPI_Comm) { return MPI_SUCCESS; }
-inline int MPI_Bcast(void*, int, MPI_Datatype, int, MPI_Comm) { return MPI_SUCCESS; }
+inline int MPI_Comm_free(MPI_Comm*) {
+    return MPI_SUCCESS;
+}
+inline int MPI_Barrier(MPI_Comm) {
+    return MPI_SUCCESS;
+}
+inline int MPI_Bcast(void*, int, MPI_Datatype, int, MPI_Comm) {
+    return MPI_SUCCESS;
+}
 inline int MPI_Allreduce(const void* send, void* recv, int count, MPI_Datatype type, MPI_Op,
                          MPI_Comm) {
     exasph::serial_mpi::copy(send, recv, count, type);
@@ -108,18 +120,26 @@ inline int MPI_Allgather(const void* send, int count, MPI_Datatype type, void* r
     exasph::serial_mpi::copy(send, recv, count, type);
     return MPI_SUCCESS;
 }
-inline int MPI_Allgatherv(const void* send, int count, MPI_Datatype type, void* recv,
-                          const int*, const int* displs, MPI_Datatype, MPI_Comm) {
+inline int MPI_Allgatherv(const void* send, int count, MPI_Datatype type, void* recv, const int*,
+                          const int* displs, MPI_Datatype, MPI_Comm) {
     exasph::serial_mpi::copy(send, static_cast<char*>(recv) + displs[0] * type, count, type);
     return MPI_SUCCESS;
 }
 inline int MPI_Type_contiguous(int count, MPI_Datatype old, MPI_Datatype* out) {
     return *out = count * old, MPI_SUCCESS;
 }
-inline int MPI_Type_commit(MPI_Datatype*) { return MPI_SUCCESS; }
-inline int MPI_Type_free(MPI_Datatype*) { return MPI_SUCCESS; }
-inline int MPI_Op_create(MPI_User_function*, int, MPI_Op* op) { return *op = 4, MPI_SUCCESS; }
-inline int MPI_Op_free(MPI_Op*) { return MPI_SUCCESS; }
+inline int MPI_Type_commit(MPI_Datatype*) {
+    return MPI_SUCCESS;
+}
+inline int MPI_Type_free(MPI_Datatype*) {
+    return MPI_SUCCESS;
+}
+inline int MPI_Op_create(MPI_User_function*, int, MPI_Op* op) {
+    return *op = 4, MPI_SUCCESS;
+}
+inline int MPI_Op_free(MPI_Op*) {
+    return MPI_SUCCESS;
+}
 
 // Point to point: only to and from rank 0 itself.
 inline int MPI_Isend(const void* buf, int count, MPI_Datatype type, int, int tag, MPI_Comm,
@@ -161,8 +181,7 @@ inline int MPI_Probe(int, int tag, MPI_Comm, MPI_Status* st) {
 inline int MPI_Get_count(const MPI_Status* st, MPI_Datatype type, int* count) {
     return *count = st->bytes / type, MPI_SUCCESS;
 }
-inline int MPI_Recv(void* buf, int count, MPI_Datatype type, int, int tag, MPI_Comm,
-                    MPI_Status*) {
+inline int MPI_Recv(void* buf, int count, MPI_Datatype type, int, int tag, MPI_Comm, MPI_Status*) {
     exasph::serial_mpi::take(tag, buf, std::size_t(count) * type);
     return MPI_SUCCESS;
 }

@@ -5,8 +5,8 @@
 #include <random>
 #include <set>
 
-#include <gtest/gtest.h>
 #include "exasph/util/mpi.hpp"
+#include <gtest/gtest.h>
 
 #include "brute_force_neighbours.hpp"
 #include "exasph/domain/domain.hpp"

@@ -7,8 +7,8 @@
 // stirring: every rank draws the same modes).
 #include <cmath>
 
-#include <gtest/gtest.h>
 #include "exasph/util/mpi.hpp"
+#include <gtest/gtest.h>
 #include <omp.h>
 
 #include "case_config.hpp"

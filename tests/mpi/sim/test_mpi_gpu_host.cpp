@@ -3,8 +3,8 @@
 // particle: the halos it searches come from the same domain as the CPU path's.
 #include <cmath>
 
-#include <gtest/gtest.h>
 #include "exasph/util/mpi.hpp"
+#include <gtest/gtest.h>
 #include <omp.h>
 
 #include "case_config.hpp"
@@ -34,8 +34,8 @@ TEST_P(MpiGpuHost, MatchesTheOneRankCpuPath) {
     if (rank != 0) return;
     ASSERT_EQ(all.size(), ref.state.size());
     const Differences d = compare_to_reference(all, ref);
-    std::printf("%s, GPU path on %d ranks vs CPU on 1: rho %.2e v %.2e u %.2e a %.2e\n",
-                GetParam(), nranks, d.rho, d.v, d.u, d.a);
+    std::printf("%s, GPU path on %d ranks vs CPU on 1: rho %.2e v %.2e u %.2e a %.2e\n", GetParam(),
+                nranks, d.rho, d.v, d.u, d.a);
     EXPECT_LT(d.rho, 1e-10);
     EXPECT_LT(d.v, 1e-10);
     EXPECT_LT(d.u, 1e-10);

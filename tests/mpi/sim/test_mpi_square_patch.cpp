@@ -6,8 +6,8 @@
 #include <map>
 #include <set>
 
-#include <gtest/gtest.h>
 #include "exasph/util/mpi.hpp"
+#include <gtest/gtest.h>
 #include <omp.h>
 
 #include "exasph/run/setup.hpp"

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <random>
 
-#include <gtest/gtest.h>
 #include "exasph/util/mpi.hpp"
+#include <gtest/gtest.h>
 
 #include "direct_gravity.hpp"
 #include "exasph/cases/evrard.hpp"

@@ -1,8 +1,8 @@
 // Issue 8, acceptance 4: the automatic checkpoint interval is the Young/Daly optimum sqrt(2 C M).
 #include <cmath>
 
-#include <gtest/gtest.h>
 #include "exasph/util/mpi.hpp"
+#include <gtest/gtest.h>
 
 #include "exasph/run/checkpoint_interval.hpp"
 

@@ -48,7 +48,9 @@ void* counting_allocate(std::size_t bytes) {
     g_backend_bytes += long(bytes);
     return std::malloc(bytes);
 }
-void counting_release(void* p) { std::free(p); }
+void counting_release(void* p) {
+    std::free(p);
+}
 } // namespace
 
 // Issue 18: a backend's field memory (the CUDA backend's managed memory) serves every particle

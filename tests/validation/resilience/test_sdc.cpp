@@ -12,8 +12,8 @@
 #include <map>
 #include <random>
 
-#include <gtest/gtest.h>
 #include "exasph/util/mpi.hpp"
+#include <gtest/gtest.h>
 
 #include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
