@@ -37,6 +37,7 @@ struct Config {
     bool av_limiter = false;       // viscosity from limited midpoint-reconstructed velocities
     bool volume_elements = false;  // generalised volume elements X = (m/rho)^0.7
     double tensile_stress = 0.0;   // artificial stress for negative pressures (Monaghan 2000)
+    int tensile_exponent = 4;      // n of the stress's (W(r)/W(dp))^n
     bool torque_free = false;      // pair forces without net torque (angular momentum)
     bool double_precision = false; // rho, P, c, P/(Om k^2), C, nc in double, not float
     double G = -1.0;               // gravitational constant (--G); < 0: the case's (0: no gravity)

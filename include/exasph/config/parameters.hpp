@@ -71,15 +71,17 @@ inline const std::array kParameters{
     Param{"--scheme", "scheme", "Formulation: std (the paper's: standard SPH volumes, alpha "
           "viscosity on every approaching pair, no conductivity), ve (generalised volume "
           "elements, slope-limited viscosity, conductivity 1: the recommended one) or wc (std "
-          "with artificial stress 0.2, for weakly compressible liquids under tension); options "
+          "for weakly compressible liquids under tension: artificial stress 0.3 with exponent "
+          "6, torque-free forces, double-precision derived fields, 250 neighbours); options "
           "given beside it override its values (default: "
           "the case's scheme, wc for square-patch, ve for the others and for files)", "",
           OnRestart::kept,
           &Config::scheme, {}, false},
-    Param{"--ng0", "ng0", "Target number of neighbours", "", OnRestart::kept, &Config::ng0,
-          in_range(10, 1000)},
+    Param{"--ng0", "ng0", "Target number of neighbours (set by --scheme: 250 wc, else 100)", "",
+          OnRestart::kept, &Config::ng0, in_range(10, 1000)},
     Param{"--ngmax", "ngmax", "Neighbour cap; exceeding it is reported (lists are never "
-          "truncated)", "", OnRestart::kept, &Config::ngmax, in_range(10, 4000)},
+          "truncated) (set by --scheme: 300 wc, else 150)", "", OnRestart::kept, &Config::ngmax,
+          in_range(10, 4000)},
     Param{"--kernel-exponent", "kernel_exponent", "Sinc kernel exponent n", "", OnRestart::kept,
           &Config::kernel_exponent, in_range(3, 12)},
     Param{"--courant", "courant", "Courant factor K_cour", "", OnRestart::kept, &Config::courant,
@@ -103,13 +105,19 @@ inline const std::array kParameters{
           &Config::volume_elements},
     Param{"--tensile-stress", "tensile_stress", "Artificial stress against the tensile "
           "instability (Monaghan 2000): pairs of particles under negative pressure repel with "
-          "eps |P|/rho^2 (W(r)/W(dp))^4; acts only where P < 0 (weakly compressible fluids); 0 "
-          "is off (set by --scheme: 0.2 wc, else 0)", "", OnRestart::kept,
+          "eps |P|/rho^2 (W(r)/W(dp))^n; acts only where P < 0 (weakly compressible fluids); 0 "
+          "is off (set by --scheme: 0.3 wc, else 0)", "", OnRestart::kept,
           &Config::tensile_stress, in_range(0, 1)},
+    Param{"--tensile-exponent", "tensile_exponent", "Artificial stress: the exponent n of "
+          "(W(r)/W(dp))^n, how sharply the repulsion is confined to pairs closer than the mean "
+          "spacing dp (Monaghan 2000: 4; set by --scheme: 6 wc, else 4)", "", OnRestart::kept,
+          &Config::tensile_exponent,
+          in_range(1, 15)},
     Param{"--torque-free", "torque_free", "Pressure and viscous pair forces that exert no "
-          "net torque (angular momentum conserved to the precision of the stored IAD matrix "
-          "when the artificial stress is off): the IAD matrix from the pressure term's own "
-          "weights X_b/k_a, and artificial viscosity along the pair axis", "",
+          "net torque (angular momentum conserved to the precision of the stored IAD matrix): "
+          "the IAD matrix from the pressure term's own weights X_b/k_a, artificial viscosity "
+          "along the pair axis, and the artificial stress with a matrix of its own (+72 "
+          "B/particle)", "",
           OnRestart::kept, &Config::torque_free},
     Param{"--double-precision", "double_precision", "Store the derived fields (rho, P, c, "
           "P/(Omega k^2), the IAD matrix, neighbour counts) in double instead of single "

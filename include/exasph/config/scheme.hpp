@@ -16,7 +16,7 @@ struct SchemeValue {
     std::string_view key; // a parameter of kParameters (a flag or a number)
     double value;         // flags: 0 off, 1 on
 };
-inline constexpr std::size_t kSchemeValues = 8;
+inline constexpr std::size_t kSchemeValues = 11;
 inline constexpr std::array<SchemeValue, kSchemeValues> kStdScheme{{{"alpha", 1},
                                                                     {"av_switch", 0},
                                                                     {"conductivity", 0},
@@ -24,7 +24,10 @@ inline constexpr std::array<SchemeValue, kSchemeValues> kStdScheme{{{"alpha", 1}
                                                                     {"volume_elements", 0},
                                                                     {"tensile_stress", 0},
                                                                     {"torque_free", 0},
-                                                                    {"double_precision", 0}}};
+                                                                    {"double_precision", 0},
+                                                                    {"tensile_exponent", 4},
+                                                                    {"ng0", 100},
+                                                                    {"ngmax", 150}}};
 // ve: generalised volume elements (sharp contact discontinuities and density jumps),
 // artificial viscosity from slope-limited reconstructed velocities (no dissipation in smooth
 // flows: shear, rotation, convergent inflow), and conductivity 1 (Price 2008's value: the
@@ -37,22 +40,32 @@ inline constexpr std::array<SchemeValue, kSchemeValues> kVeScheme{{{"alpha", 1},
                                                                    {"volume_elements", 1},
                                                                    {"tensile_stress", 0},
                                                                    {"torque_free", 0},
-                                                                   {"double_precision", 0}}};
+                                                                   {"double_precision", 0},
+                                                                   {"tensile_exponent", 4},
+                                                                   {"ng0", 100},
+                                                                   {"ngmax", 150}}};
 // wc: std for weakly compressible liquids with free surfaces and negative pressures (the square
-// patch). The artificial stress (Monaghan 2000) stops the tensile clumping that std shows there
-// (-n 20, t = 0.25: closest pair 0.33 of the spacing with std, 0.78 with wc). --torque-free is
-// not in it: beside the stress it drifted L_z more, not less (docs/validation.md). Double
-// precision: single-precision rho, P and C turned round-off differences between the identical
-// layers into 1e-7 seeds of v_z, which the patch's layer instability grew to |v_z|/max|v_xy| =
-// 1.2e-2 by t = 0.5 (-n 20); in double, 2.8e-8.
+// patch, docs/validation.md), with the paper's ~250 neighbours. The artificial stress (Monaghan
+// 2000) stops the tensile clumping that std shows there (-n 20, t = 0.25: closest pair 0.33 of
+// the spacing with std); at 250 neighbours W(r)/W(dp) varies less inside dp, so the exponent is
+// 6, not Monaghan's 4, and eps 0.3 (-n 30 at t = 0.5: closest pair 0.48 with eps 0.2, 0.52 with
+// 0.3; eps 0.4 grew v_z to 2e-5). --torque-free, with the stress's own matrix: L_z conserved to
+// 1e-6 (0.3-1.4 % drift without). Double precision: single-precision rho, P and C turned
+// round-off differences between the identical layers into 1e-7 seeds of v_z, which the patch's
+// layer instability grew to |v_z|/max|v_xy| = 1.2e-2 by t = 0.5 (-n 20). With ng0 100 that
+// instability grows v_z from 1e-14 to 1e-3 between t = 0.25 and 0.5 (-n 20); with 250 it stays
+// below 1e-5 (-n 20, -n 30).
 inline constexpr std::array<SchemeValue, kSchemeValues> kWcScheme{{{"alpha", 1},
                                                                    {"av_switch", 0},
                                                                    {"conductivity", 0},
                                                                    {"av_limiter", 0},
                                                                    {"volume_elements", 0},
-                                                                   {"tensile_stress", 0.2},
-                                                                   {"torque_free", 0},
-                                                                   {"double_precision", 1}}};
+                                                                   {"tensile_stress", 0.3},
+                                                                   {"torque_free", 1},
+                                                                   {"double_precision", 1},
+                                                                   {"tensile_exponent", 6},
+                                                                   {"ng0", 250},
+                                                                   {"ngmax", 300}}};
 
 inline const auto& scheme_values(Scheme s) {
     return s == Scheme::ve ? kVeScheme : s == Scheme::wc ? kWcScheme : kStdScheme;
@@ -73,9 +86,11 @@ inline void apply_scheme(Config& cfg, Scheme s,
                     cfg.*m = sv.value != 0;
                 else if constexpr (std::is_same_v<std::decay_t<decltype(m)>, double Config::*>)
                     cfg.*m = sv.value;
+                else if constexpr (std::is_same_v<std::decay_t<decltype(m)>, int Config::*>)
+                    cfg.*m = int(sv.value);
                 else
                     throw std::logic_error("scheme parameter " + std::string(sv.key) +
-                                           " is neither a flag nor a number");
+                                           " is not a flag or a number");
             },
             p->member);
     }

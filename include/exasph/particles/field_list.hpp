@@ -36,6 +36,17 @@ enum class Field : std::uint8_t {
     c22,
     c23,
     c33, // IAD matrix C = tau^-1 (SPEC 5)
+    // The artificial stress's matrix M (row-major), only with --tensile-stress and
+    // --torque-free (tensile_stress.hpp).
+    s11,
+    s12,
+    s13,
+    s21,
+    s22,
+    s23,
+    s31,
+    s32,
+    s33,
     ax,
     ay,
     az,    // acceleration
@@ -115,6 +126,15 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::c22,      "c22",      "1/length^2",  kDerived | kHaloIad, "IAD matrix C_22"},
     {Field::c23,      "c23",      "1/length^2",  kDerived | kHaloIad, "IAD matrix C_23"},
     {Field::c33,      "c33",      "1/length^2",  kDerived | kHaloIad, "IAD matrix C_33"},
+    {Field::s11,      "stress_m11", "1/length^2", kDerived | kHaloIad | kOptional, "artificial stress matrix M_11"},
+    {Field::s12,      "stress_m12", "1/length^2", kDerived | kHaloIad | kOptional, "artificial stress matrix M_12"},
+    {Field::s13,      "stress_m13", "1/length^2", kDerived | kHaloIad | kOptional, "artificial stress matrix M_13"},
+    {Field::s21,      "stress_m21", "1/length^2", kDerived | kHaloIad | kOptional, "artificial stress matrix M_21"},
+    {Field::s22,      "stress_m22", "1/length^2", kDerived | kHaloIad | kOptional, "artificial stress matrix M_22"},
+    {Field::s23,      "stress_m23", "1/length^2", kDerived | kHaloIad | kOptional, "artificial stress matrix M_23"},
+    {Field::s31,      "stress_m31", "1/length^2", kDerived | kHaloIad | kOptional, "artificial stress matrix M_31"},
+    {Field::s32,      "stress_m32", "1/length^2", kDerived | kHaloIad | kOptional, "artificial stress matrix M_32"},
+    {Field::s33,      "stress_m33", "1/length^2", kDerived | kHaloIad | kOptional, "artificial stress matrix M_33"},
     {Field::ax,       "ax",       "length/time^2", kDerived | kSnapshot, "acceleration x"},
     {Field::ay,       "ay",       "length/time^2", kDerived | kSnapshot, "acceleration y"},
     {Field::az,       "az",       "length/time^2", kDerived | kSnapshot, "acceleration z"},
@@ -143,6 +163,11 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
 static_assert(int(Field::gzz) - int(Field::gxx) == 8, "the gradient fields are contiguous");
 EXASPH_HD constexpr Field velocity_gradient_field(int c) {
     return static_cast<Field>(int(Field::gxx) + c);
+}
+// The artificial stress's matrix M_ij, row-major: component c is field s11 + c.
+static_assert(int(Field::s33) - int(Field::s11) == 8, "the stress matrix fields are contiguous");
+EXASPH_HD constexpr Field stress_matrix_field(int c) {
+    return static_cast<Field>(int(Field::s11) + c);
 }
 
 // The fields carrying any of the role bits, in table order.

@@ -187,8 +187,7 @@ class Simulation {
         max_list_ = res.max_count;
     }
 
-    // SPEC 3-6: density (with the EOS; the Tait EOS takes its reference density from the first
-    // step), IAD, momentum and energy, with the halo exchanges between them.
+    // SPEC 3-6: density and EOS (Tait: rho0 from the first step), IAD, momentum and energy.
     void hydro_forces() {
         const auto k = kernel_.view();
         if (step_ == 0 && cfg_.volume_elements)
@@ -198,11 +197,12 @@ class Simulation {
         timer_.stop(kDensity);
         domain_.exchange_halos(ps_, kHaloDensity);
         timer_.stop(kDensityHalos);
-        compute_iad<L>(ps_, nlists_, box_, k, cfg_.av_limiter, cfg_.torque_free);
+        const auto diss =
+            Dissipation<T>::of(cfg_.alpha, cfg_.conductivity, cfg_.av_limiter, cfg_.ng0,
+                               cfg_.tensile_stress, cfg_.torque_free, cfg_.tensile_exponent);
+        compute_iad<L>(ps_, nlists_, box_, k, cfg_.av_limiter, cfg_.torque_free, diss);
         domain_.exchange_halos(ps_, cfg_.av_limiter ? kHaloIad | kHaloGrad : kHaloIad);
         timer_.stop(kIad);
-        const auto diss = Dissipation<T>::of(cfg_.alpha, cfg_.conductivity, cfg_.av_limiter,
-                                             cfg_.ng0, cfg_.tensile_stress, cfg_.torque_free);
         courant_dt_ = compute_momentum_energy<L>(ps_, nlists_, box_, k, diss, T(cfg_.courant));
         nlists_.release(); // not needed again this step: the sync can use their memory
         timer_.stop(kMomentumEnergy);

@@ -4,37 +4,12 @@
 
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/iad_matrix.hpp"
+#include "exasph/sph/tensile_stress.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/box.hpp"
 
 namespace exasph {
-
-// The six independent components of the symmetric IAD matrix C_a = tau_a^{-1}.
-template <class T>
-struct IadResult {
-    T c11, c12, c13, c22, c23, c33;
-    bool singular;
-};
-
-// Inverse of a symmetric 3x3 matrix by its adjugate. Reports singular when |det| is below a
-// tiny fraction of the scale (trace/3)^3, i.e. when neighbours are too few or coplanar.
-template <class T>
-EXASPH_HD IadResult<T> invert_symmetric3(T t11, T t12, T t13, T t22, T t23, T t33) {
-    T a11 = t22 * t33 - t23 * t23;
-    T a12 = t13 * t23 - t12 * t33;
-    T a13 = t12 * t23 - t13 * t22;
-    T det = t11 * a11 + t12 * a12 + t13 * a13;
-    T scale = (t11 + t22 + t33) / T(3);
-    bool singular = !(std::abs(det) > T(1e-12) * scale * scale * scale);
-    T inv = singular ? T(0) : T(1) / det;
-    return {a11 * inv,
-            a12 * inv,
-            a13 * inv,
-            (t11 * t33 - t13 * t13) * inv,
-            (t12 * t13 - t11 * t23) * inv,
-            (t11 * t22 - t12 * t12) * inv,
-            singular};
-}
 
 // The IAD velocity gradient G_ij = dv_i/dx_j, row-major.
 template <class T>
@@ -140,10 +115,19 @@ struct IadKernel {
     KernelView<T> k;
     bool with_gradient = false;
     bool own_k = false; // --torque-free
+    // The artificial stress's matrix M (Field::s11..s33; with own_k): 1 / W(dp) and the
+    // exponent of f_ab (tensile_stress.hpp); 0: none.
+    T stress_inv_w0 = T(0);
+    int stress_exponent = 4;
 
     EXASPH_HD double operator()(std::uint32_t i, NeighbourSpan nb) const {
         VelocityGradient<T> g;
         auto r = iad_kern(i, nb, p, box, k, with_gradient ? &g : nullptr, own_k);
+        if (stress_inv_w0 > T(0)) {
+            const auto s = stress_matrix_kern(i, nb, p, box, k, stress_inv_w0, stress_exponent, r);
+            for (int c = 0; c < 9; ++c) p[stress_matrix_field(c)][i] = s.m[c];
+            r.singular = r.singular || s.singular;
+        }
         if (with_gradient)
             for (int c = 0; c < 9; ++c) p[velocity_gradient_field(c)][i] = g.g[c];
         p.narrow(Field::c11)[i] = N(r.c11);

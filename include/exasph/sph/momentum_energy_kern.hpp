@@ -5,6 +5,8 @@
 
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/iad_kern.hpp"
+#include "exasph/sph/tensile_stress.hpp"
 #include "exasph/sph/timestep.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/box.hpp"
@@ -27,15 +29,28 @@ struct Dissipation {
     T eta_crit = T(0);        // pairs closer than eta_crit max(h_a, h_b) fade the reconstruction
     T alpha = T(1);           // the AV coefficient where particles carry none (no AV switch)
     T tensile = T(0);         // artificial stress coefficient eps (0: off)
-    bool central = false;     // viscosity and stress along the pair axis (--torque-free)
+    bool central = false;     // viscosity along the pair axis (--torque-free)
+    int tensile_exponent = 4; // n of the stress's f_ab^n
+    // --torque-free with the stress: its own matrix M (Field::s11..s33, tensile_stress.hpp)
+    bool stress_matrix = false;
 
     static Dissipation of(double alpha, double alpha_u, bool reconstruct, double ng0,
-                          double tensile = 0, bool central = false) {
+                          double tensile = 0, bool central = false, int tensile_exponent = 4) {
         // eta_crit: about the mean particle spacing in units of h, (4/3 pi (2h)^3 / ng0)^(1/3) / h.
-        return {T(alpha_u), reconstruct, T(std::cbrt(32.0 * std::numbers::pi / (3.0 * ng0))),
-                T(alpha),   T(tensile),  central};
+        return {T(alpha_u),
+                reconstruct,
+                T(std::cbrt(32.0 * std::numbers::pi / (3.0 * ng0))),
+                T(alpha),
+                T(tensile),
+                central,
+                tensile_exponent,
+                central && tensile > 0};
     }
     bool any_extra() const { return reconstruct || alpha_u > T(0) || tensile > T(0) || central; }
+    // 1 / W(dp) of the stress's f_ab (0 without the stress).
+    EXASPH_HD T stress_inv_w0(const KernelView<T>& k) const {
+        return tensile > T(0) ? T(1) / k.value(eta_crit) : T(0);
+    }
 };
 
 // v_ab with both velocities reconstructed linearly to the pair midpoint (Rosswog 2015):
@@ -83,21 +98,6 @@ EXASPH_HD EXASPH_INLINE Vec3<T> along_axis(T gx, T gy, T gz, T dx, T dy, T dz, T
     return {s * dx, s * dy, s * dz};
 }
 
-// C (x) d for the symmetric IAD matrix of particle i.
-template <class T>
-struct IadProduct {
-    T x, y, z;
-};
-template <class T, class N>
-EXASPH_HD EXASPH_INLINE IadProduct<T> iad_times(const ParticleView<T, N>& p, std::uint32_t i, T dx,
-                                                T dy, T dz) {
-    // C is stored in float (is_narrow; double with --double-precision); the products are in T.
-    T c11 = p.narrow(Field::c11)[i], c12 = p.narrow(Field::c12)[i], c13 = p.narrow(Field::c13)[i];
-    T c22 = p.narrow(Field::c22)[i], c23 = p.narrow(Field::c23)[i], c33 = p.narrow(Field::c33)[i];
-    return {c11 * dx + c12 * dy + c13 * dz, c12 * dx + c22 * dy + c23 * dz,
-            c13 * dx + c23 * dy + c33 * dz};
-}
-
 // SPEC 6 with IAD gradients, with a per-particle alpha (SPEC 6's "later switch") (SPEC 5), over a
 // symmetric neighbour list (r_ab < 2 max(h_a, h_b)), which makes every pair's contribution appear
 // with opposite sign in b's sum: momentum is conserved to round-off and energy up to
@@ -142,7 +142,9 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
     // members' terms as P does, so momentum stays conserved, and du/dt takes R's work.
     const T eps_ts = kExtras ? diss.tensile : T(0);
     const T ra = pa < T(0) ? -eps_ts * pa : T(0);
-    const T inv_w0 = eps_ts > T(0) ? T(1) / k.value(diss.eta_crit) : T(0);
+    const T inv_w0 = kExtras ? diss.stress_inv_w0(k) : T(0);
+    const int n_ts = diss.tensile_exponent;
+    const bool own_stress_matrix = kExtras && diss.stress_matrix;
     T du_ts = 0;
     const T* u = p[Field::u];
     T ga[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -204,22 +206,34 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
         }
         T half_pi = T(0.5) * pi_ab;
         T xb = kVolumeElements ? xm[b] : mb;
-        // The stress's pair coefficients f_ab^4 R_a, f_ab^4 R_b join the pressure's (IAD
-        // gradients: the central form along the pair axis, tried with --torque-free, made the
-        // square patch unstable by t = 0.12).
-        T qa = pa, qb = pb, f4 = T(0);
+        // The stress's pair coefficients f_ab^n R_a, f_ab^n R_b, with the pressure's IAD
+        // gradients A_ab or, with --torque-free, its own matrix's (M_a d W_a, M_b d W_b: no net
+        // torque). (The central form along the pair axis made the square patch unstable by
+        // t = 0.12.)
+        T qa = pa, qb = pb;
+        T tax = 0, tay = 0, taz = 0, tv = 0; // the own-matrix stress force and its work
         if constexpr (kExtras) {
-            const T f = T(0.5) * (kwa + kwb) * inv_w0;
-            f4 = (f * f) * (f * f);
-            qa += f4 * ra;
-            qb += f4 * (pb < T(0) ? -eps_ts * pb : T(0));
+            const T fn = stress_weight(kwa, kwb, inv_w0, n_ts);
+            const T rb = pb < T(0) ? -eps_ts * pb : T(0);
+            if (own_stress_matrix) {
+                const IadProduct<T> sa = stress_matrix_times(p, a, dx, dy, dz);
+                const IadProduct<T> sb = stress_matrix_times(p, b, dx, dy, dz);
+                const T fa = fn * ra * wa, fb = fn * rb * wb;
+                tax = fa * sa.x + fb * sb.x, tay = fa * sa.y + fb * sb.y;
+                taz = fa * sa.z + fb * sb.z;
+                tv = fn * wa * (vabx * sa.x + vaby * sa.y + vabz * sa.z);
+            } else {
+                qa += fn * ra;
+                qb += fn * rb;
+                tv = fn * (vabx * aax + vaby * aay + vabz * aaz);
+            }
         }
-        ax -= xb * (qa * aax + qb * abx) + mb * half_pi * gx;
-        ay -= xb * (qa * aay + qb * aby) + mb * half_pi * gy;
-        az -= xb * (qa * aaz + qb * abz) + mb * half_pi * gz;
+        ax -= xb * (qa * aax + qb * abx + tax) + mb * half_pi * gx;
+        ay -= xb * (qa * aay + qb * aby + tay) + mb * half_pi * gy;
+        az -= xb * (qa * aaz + qb * abz + taz) + mb * half_pi * gz;
         T v_dot_a = vabx * aax + vaby * aay + vabz * aaz;
         du_p += xb * v_dot_a;
-        du_ts += xb * f4 * v_dot_a;
+        du_ts += xb * tv;
         if constexpr (kAlphaField) { // the AV switch's input only
             const T kb = kVolumeElements ? kx[b] : T(rho[b]);
             divv -= xb / kb * v_dot_a;

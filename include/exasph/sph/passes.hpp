@@ -29,14 +29,21 @@ void compute_density(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, con
 }
 
 // SPEC 5. Throws Error naming a particle whose tau is singular. With `with_gradient`, also
-// stores the velocity gradient for the reconstructed artificial viscosity.
+// stores the velocity gradient for the reconstructed artificial viscosity; with `diss`'s
+// stress_matrix, the artificial stress's matrix M (Field::s11..s33).
 template <class L = DefaultLauncher, class T, class Lists>
 void compute_iad(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const KernelView<T>& k,
-                 bool with_gradient = false, bool own_k = false) {
+                 bool with_gradient = false, bool own_k = false, const Dissipation<T>& diss = {}) {
+    // the artificial stress's own matrix (tensile_stress.hpp), with --torque-free
+    const T stress_inv_w0 = diss.stress_matrix ? diss.stress_inv_w0(k) : T(0);
+    const int stress_exponent = diss.tensile_exponent;
     if (with_gradient) ps.enable(kHaloGrad);
+    if (stress_inv_w0 > T(0))
+        for (int c = 0; c < 9; ++c) ps.enable(stress_matrix_field(c));
     const double first = with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
-        return L::for_each_neighbourhood(nl, IadKernel<T, N>{p, box, k, with_gradient, own_k});
+        return L::for_each_neighbourhood(
+            nl, IadKernel<T, N>{p, box, k, with_gradient, own_k, stress_inv_w0, stress_exponent});
     });
     if (first < double(nl.size())) {
         const auto i = std::uint32_t(first);

@@ -1,0 +1,53 @@
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "exasph/particles/particle_view.hpp"
+#include "exasph/util/annotate.hpp"
+
+// The IAD matrix (SPEC 5): its inversion and its product with a pair's separation.
+namespace exasph {
+
+// The six independent components of the symmetric IAD matrix C_a = tau_a^{-1}.
+template <class T>
+struct IadResult {
+    T c11, c12, c13, c22, c23, c33;
+    bool singular;
+};
+
+// Inverse of a symmetric 3x3 matrix by its adjugate. Reports singular when |det| is below a
+// tiny fraction of the scale (trace/3)^3, i.e. when neighbours are too few or coplanar.
+template <class T>
+EXASPH_HD IadResult<T> invert_symmetric3(T t11, T t12, T t13, T t22, T t23, T t33) {
+    T a11 = t22 * t33 - t23 * t23;
+    T a12 = t13 * t23 - t12 * t33;
+    T a13 = t12 * t23 - t13 * t22;
+    T det = t11 * a11 + t12 * a12 + t13 * a13;
+    T scale = (t11 + t22 + t33) / T(3);
+    bool singular = !(std::abs(det) > T(1e-12) * scale * scale * scale);
+    T inv = singular ? T(0) : T(1) / det;
+    return {a11 * inv,
+            a12 * inv,
+            a13 * inv,
+            (t11 * t33 - t13 * t13) * inv,
+            (t12 * t13 - t11 * t23) * inv,
+            (t11 * t22 - t12 * t12) * inv,
+            singular};
+}
+
+// C (x) d for the symmetric IAD matrix of particle i.
+template <class T>
+struct IadProduct {
+    T x, y, z;
+};
+template <class T, class N>
+EXASPH_HD EXASPH_INLINE IadProduct<T> iad_times(const ParticleView<T, N>& p, std::uint32_t i, T dx,
+                                                T dy, T dz) {
+    // C is stored in float (is_narrow; double with --double-precision); the products are in T.
+    T c11 = p.narrow(Field::c11)[i], c12 = p.narrow(Field::c12)[i], c13 = p.narrow(Field::c13)[i];
+    T c22 = p.narrow(Field::c22)[i], c23 = p.narrow(Field::c23)[i], c33 = p.narrow(Field::c33)[i];
+    return {c11 * dx + c12 * dy + c13 * dz, c12 * dx + c22 * dy + c23 * dz,
+            c13 * dx + c23 * dy + c33 * dz};
+}
+
+} // namespace exasph
