@@ -66,12 +66,7 @@ EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const Pa
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         T dx, dy, dz;
         T vw = pair(nb[n], dx, dy, dz); // V_b W_ab(h_a)
-        t11 += dx * dx * vw;
-        t12 += dx * dy * vw;
-        t13 += dx * dz * vw;
-        t22 += dy * dy * vw;
-        t23 += dy * dz * vw;
-        t33 += dz * dz * vw;
+        add_second_moment(t11, t12, t13, t22, t23, t33, dx, dy, dz, vw);
     }
     if (grad) {
         for (std::uint32_t n = 0; n < nb.count; ++n) {

@@ -35,6 +35,19 @@ EXASPH_HD IadResult<T> invert_symmetric3(T t11, T t12, T t13, T t22, T t23, T t3
             singular};
 }
 
+// Adds w d (x) d to the six sums of a symmetric second moment (tau, SPEC 5). Inlined into the
+// vectorised pair loops, whose omp simd reductions are on the six scalars.
+template <class T>
+EXASPH_HD EXASPH_INLINE void add_second_moment(T& t11, T& t12, T& t13, T& t22, T& t23, T& t33, T dx,
+                                               T dy, T dz, T w) {
+    t11 += dx * dx * w;
+    t12 += dx * dy * w;
+    t13 += dx * dz * w;
+    t22 += dy * dy * w;
+    t23 += dy * dz * w;
+    t33 += dz * dz * w;
+}
+
 // C (x) d for the symmetric IAD matrix of particle i.
 template <class T>
 struct IadProduct {

@@ -59,12 +59,7 @@ EXASPH_HD StressMatrix<T> stress_matrix_kern(std::uint32_t a, NeighbourSpan nb,
         const T r = std::sqrt(dx * dx + dy * dy + dz * dz);
         const T kwa = k.value(r * inv_ha), kwb = k.value(r / h[b]);
         const T w = xm[b] * stress_weight(kwa, kwb, inv_w0, n) * kwa;
-        t11 += dx * dx * w;
-        t12 += dx * dy * w;
-        t13 += dx * dz * w;
-        t22 += dy * dy * w;
-        t23 += dy * dz * w;
-        t33 += dz * dz * w;
+        add_second_moment(t11, t12, t13, t22, t23, t33, dx, dy, dz, w);
     }
     // M is invariant to the scale of tau' (no 1/h^3, no 1/k_a needed).
     const T tau[9] = {t11, t12, t13, t12, t22, t23, t13, t23, t33};
