@@ -47,14 +47,13 @@ void compute_iad(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const K
     });
     if (first < double(nl.size())) {
         const auto i = std::uint32_t(first);
-        const std::string which = stress_inv_w0 > T(0)
-                                      ? "IAD matrix tau or the artificial stress's tau'"
-                                      : "IAD matrix tau";
-        const std::string hint =
-            stress_inv_w0 > T(0) ? " (or a --tensile-exponent too high for them)" : "";
-        throw Error(which + " is singular for particle id " + std::to_string(ps.id[i]) + " (" +
+        const bool with_stress = stress_inv_w0 > T(0);
+        throw Error(std::string(with_stress ? "IAD matrix tau or the artificial stress's tau'"
+                                            : "IAD matrix tau") +
+                    " is singular for particle id " + std::to_string(ps.id[i]) + " (" +
                     std::to_string(nl.list(i).size()) +
-                    " neighbours): too few or coplanar neighbours" + hint);
+                    " neighbours): too few or coplanar neighbours" +
+                    (with_stress ? " (or a --tensile-exponent too high for them)" : ""));
     }
 }
 
