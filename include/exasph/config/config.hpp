@@ -26,22 +26,23 @@ struct Config {
     // The formulation: a scheme names the values of the parameters from alpha to
     // volume_elements (config/scheme.hpp); Config{} is the std scheme.
     Scheme scheme = Scheme::std_sph;
-    double ng0 = 100;              // target neighbour count (SPEC 2)
-    int ngmax = 150;               // neighbour cap: exceeding it is reported
-    double kernel_exponent = 6;    // sinc exponent n (SPEC 1)
-    double courant = 0.2;          // K_cour (SPEC 7)
-    double alpha = 1.0;            // artificial viscosity (SPEC 6); the maximum with --av-switch
-    bool av_switch = false;        // evolve alpha per particle (Morris & Monaghan)
-    double alpha_min = 0.05;       // AV switch: floor of alpha
-    double conductivity = 0.0;     // artificial conductivity alpha_u (0: off)
-    bool av_limiter = false;       // viscosity from limited midpoint-reconstructed velocities
-    bool volume_elements = false;  // generalised volume elements X = (m/rho)^0.7
-    double tensile_stress = 0.0;   // artificial stress for negative pressures (Monaghan 2000)
-    int tensile_exponent = 4;      // n of the stress's (W(r)/W(dp))^n
-    bool torque_free = false;      // pair forces without net torque (angular momentum)
-    bool double_precision = false; // rho, P, c, P/(Om k^2), C, nc in double, not float
-    double G = -1.0;               // gravitational constant (--G); < 0: the case's (0: no gravity)
-    double theta = 0.5;            // Barnes-Hut opening angle (SPEC 8)
+    double ng0 = 100;             // target neighbour count (SPEC 2)
+    int ngmax = 150;              // neighbour cap: exceeding it is reported
+    double kernel_exponent = 6;   // sinc exponent n (SPEC 1)
+    double courant = 0.2;         // K_cour (SPEC 7)
+    double alpha = 1.0;           // artificial viscosity (SPEC 6); the maximum with --av-switch
+    bool av_switch = false;       // evolve alpha per particle (Morris & Monaghan)
+    double alpha_min = 0.05;      // AV switch: floor of alpha
+    double conductivity = 0.0;    // artificial conductivity alpha_u (0: off)
+    bool av_limiter = false;      // viscosity from limited midpoint-reconstructed velocities
+    bool volume_elements = false; // generalised volume elements X = (m/rho)^0.7
+    double tensile_stress = 0.0;  // artificial stress for negative pressures (Monaghan 2000)
+    int tensile_exponent = 4;     // n of the stress's (W(r)/W(dp))^n
+    double tensile_stress_positive = 0.0; // the artificial stress's eps for positive pressures
+    bool torque_free = false;             // pair forces without net torque (angular momentum)
+    bool double_precision = false;        // rho, P, c, P/(Om k^2), C, nc in double, not float
+    double G = -1.0;            // gravitational constant (--G); < 0: the case's (0: no gravity)
+    double theta = 0.5;         // Barnes-Hut opening angle (SPEC 8)
     double accel_eps = 0.2;     // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)
     int gravity_leaf_size = 16; // gravity-tree leaf size: one interaction list per leaf
     double stir_mach = -1.0;    // --stir-mach; < 0: the case's (0: no stirring)

@@ -113,6 +113,11 @@ inline const std::array kParameters{
           "spacing dp (Monaghan 2000: 4; set by --scheme: 6 wc, else 4)", "", OnRestart::kept,
           &Config::tensile_exponent,
           in_range(1, 15)},
+    Param{"--tensile-stress-positive", "tensile_stress_positive", "Artificial stress: its eps "
+          "between particles under positive pressure, R = eps P/rho^2 (W(r)/W(dp))^n, so that "
+          "close pairs repel under compression too (the square patch's closest pairs are under "
+          "P > 0); 0 is off (set by --scheme: 0.03 wc, else 0)", "", OnRestart::kept,
+          &Config::tensile_stress_positive, in_range(0, 1)},
     Param{"--torque-free", "torque_free", "Pressure and viscous pair forces that exert no "
           "net torque (angular momentum conserved to the precision of the stored IAD matrix): "
           "the IAD matrix from the pressure term's own weights X_b/k_a, artificial viscosity "

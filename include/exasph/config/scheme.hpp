@@ -16,7 +16,7 @@ struct SchemeValue {
     std::string_view key; // a parameter of kParameters (a flag or a number)
     double value;         // flags: 0 off, 1 on
 };
-inline constexpr std::size_t kSchemeValues = 11;
+inline constexpr std::size_t kSchemeValues = 12;
 inline constexpr std::array<SchemeValue, kSchemeValues> kStdScheme{{{"alpha", 1},
                                                                     {"av_switch", 0},
                                                                     {"conductivity", 0},
@@ -26,6 +26,7 @@ inline constexpr std::array<SchemeValue, kSchemeValues> kStdScheme{{{"alpha", 1}
                                                                     {"torque_free", 0},
                                                                     {"double_precision", 0},
                                                                     {"tensile_exponent", 4},
+                                                                    {"tensile_stress_positive", 0},
                                                                     {"ng0", 100},
                                                                     {"ngmax", 150}}};
 // ve: generalised volume elements (sharp contact discontinuities and density jumps),
@@ -42,6 +43,7 @@ inline constexpr std::array<SchemeValue, kSchemeValues> kVeScheme{{{"alpha", 1},
                                                                    {"torque_free", 0},
                                                                    {"double_precision", 0},
                                                                    {"tensile_exponent", 4},
+                                                                   {"tensile_stress_positive", 0},
                                                                    {"ng0", 100},
                                                                    {"ngmax", 150}}};
 // wc: std for weakly compressible liquids with free surfaces and negative pressures (the square
@@ -49,12 +51,15 @@ inline constexpr std::array<SchemeValue, kSchemeValues> kVeScheme{{{"alpha", 1},
 // 2000) stops the tensile clumping that std shows there (-n 20, t = 0.25: closest pair 0.33 of
 // the spacing with std); at 250 neighbours W(r)/W(dp) varies less inside dp, so the exponent is
 // 6, not Monaghan's 4, and eps 0.3 (-n 30 at t = 0.5: closest pair 0.48 with eps 0.2, 0.52 with
-// 0.3; eps 0.4 grew v_z to 2e-5). --torque-free, with the stress's own matrix: L_z conserved to
-// 1e-6 (0.3-1.4 % drift without). Double precision: single-precision rho, P and C turned
-// round-off differences between the identical layers into 1e-7 seeds of v_z, which the patch's
-// layer instability grew to |v_z|/max|v_xy| = 1.2e-2 by t = 0.5 (-n 20). With ng0 100 that
-// instability grows v_z from 1e-14 to 1e-3 between t = 0.25 and 0.5 (-n 20); with 250 it stays
-// below 1e-5 (-n 20, -n 30).
+// 0.3; eps 0.4 grew v_z to 2e-5). A tenth of it under compression (eps 0.03 for P > 0): the
+// patch's closest pairs are under positive pressure, and with the stress for P < 0 only the
+// closest pair fell to 0.45 of the spacing at -n 24 on 2 ranks (0.54 with it); 0.3 for P > 0
+// grew v_z to 1.4e-3 at -n 30. --torque-free, with
+// the stress's own matrix: L_z conserved to 1e-6 (0.3-1.4 % drift without). Double precision:
+// single-precision rho, P and C turned round-off differences between the identical layers into 1e-7
+// seeds of v_z, which the patch's layer instability grew to |v_z|/max|v_xy| = 1.2e-2 by t = 0.5 (-n
+// 20). With ng0 100 that instability grows v_z from 1e-14 to 1e-3 between t = 0.25 and 0.5 (-n 20);
+// with 250 it stays below 1e-5 (-n 20, -n 30).
 inline constexpr std::array<SchemeValue, kSchemeValues> kWcScheme{{{"alpha", 1},
                                                                    {"av_switch", 0},
                                                                    {"conductivity", 0},
@@ -64,6 +69,7 @@ inline constexpr std::array<SchemeValue, kSchemeValues> kWcScheme{{{"alpha", 1},
                                                                    {"torque_free", 1},
                                                                    {"double_precision", 1},
                                                                    {"tensile_exponent", 6},
+                                                                   {"tensile_stress_positive", 0.03},
                                                                    {"ng0", 250},
                                                                    {"ngmax", 300}}};
 

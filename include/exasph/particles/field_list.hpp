@@ -36,8 +36,8 @@ enum class Field : std::uint8_t {
     c22,
     c23,
     c33, // IAD matrix C = tau^-1 (SPEC 5)
-    // The artificial stress's matrix M (row-major), only with --tensile-stress and
-    // --torque-free (tensile_stress.hpp).
+    // The artificial stress's matrix M (row-major), only with the stress (--tensile-stress or
+    // --tensile-stress-positive) and --torque-free (tensile_stress.hpp).
     s11,
     s12,
     s13,

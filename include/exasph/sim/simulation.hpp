@@ -197,9 +197,9 @@ class Simulation {
         timer_.stop(kDensity);
         domain_.exchange_halos(ps_, kHaloDensity);
         timer_.stop(kDensityHalos);
-        const auto diss =
-            Dissipation<T>::of(cfg_.alpha, cfg_.conductivity, cfg_.av_limiter, cfg_.ng0,
-                               cfg_.tensile_stress, cfg_.torque_free, cfg_.tensile_exponent);
+        const auto diss = Dissipation<T>::of(cfg_.alpha, cfg_.conductivity, cfg_.av_limiter,
+                                             cfg_.ng0, cfg_.tensile_stress, cfg_.torque_free,
+                                             cfg_.tensile_exponent, cfg_.tensile_stress_positive);
         compute_iad<L>(ps_, nlists_, box_, k, cfg_.av_limiter, cfg_.torque_free, diss);
         domain_.exchange_halos(ps_, cfg_.av_limiter ? kHaloIad | kHaloGrad : kHaloIad);
         timer_.stop(kIad);

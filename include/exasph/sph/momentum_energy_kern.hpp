@@ -24,32 +24,38 @@ struct MomentumEnergyResult {
 // Artificial dissipation beyond SPEC 6's viscosity.
 template <class T>
 struct Dissipation {
-    T alpha_u = T(0);         // artificial conductivity coefficient (0: off)
-    bool reconstruct = false; // viscosity from velocities reconstructed to the pair midpoint
-    T eta_crit = T(0);        // pairs closer than eta_crit max(h_a, h_b) fade the reconstruction
-    T alpha = T(1);           // the AV coefficient where particles carry none (no AV switch)
-    T tensile = T(0);         // artificial stress coefficient eps (0: off)
-    bool central = false;     // viscosity along the pair axis (--torque-free)
-    int tensile_exponent = 4; // n of the stress's f_ab^n
+    T alpha_u = T(0);          // artificial conductivity coefficient (0: off)
+    bool reconstruct = false;  // viscosity from velocities reconstructed to the pair midpoint
+    T eta_crit = T(0);         // pairs closer than eta_crit max(h_a, h_b) fade the reconstruction
+    T alpha = T(1);            // the AV coefficient where particles carry none (no AV switch)
+    T tensile = T(0);          // artificial stress coefficient eps where P < 0 (0: off)
+    T tensile_positive = T(0); // the stress's eps where P > 0 (0: off)
+    bool central = false;      // viscosity along the pair axis (--torque-free)
+    int tensile_exponent = 4;  // n of the stress's f_ab^n
     // --torque-free with the stress: its own matrix M (Field::s11..s33, tensile_stress.hpp)
     bool stress_matrix = false;
 
     static Dissipation of(double alpha, double alpha_u, bool reconstruct, double ng0,
-                          double tensile = 0, bool central = false, int tensile_exponent = 4) {
+                          double tensile = 0, bool central = false, int tensile_exponent = 4,
+                          double tensile_positive = 0) {
         // eta_crit: about the mean particle spacing in units of h, (4/3 pi (2h)^3 / ng0)^(1/3) / h.
-        return {T(alpha_u),
-                reconstruct,
-                T(std::cbrt(32.0 * std::numbers::pi / (3.0 * ng0))),
-                T(alpha),
-                T(tensile),
-                central,
-                tensile_exponent,
-                central && tensile > 0};
+        Dissipation d;
+        d.alpha_u = T(alpha_u);
+        d.reconstruct = reconstruct;
+        d.eta_crit = T(std::cbrt(32.0 * std::numbers::pi / (3.0 * ng0)));
+        d.alpha = T(alpha);
+        d.tensile = T(tensile);
+        d.tensile_positive = T(tensile_positive);
+        d.central = central;
+        d.tensile_exponent = tensile_exponent;
+        d.stress_matrix = central && d.stress();
+        return d;
     }
-    bool any_extra() const { return reconstruct || alpha_u > T(0) || tensile > T(0) || central; }
+    EXASPH_HD bool stress() const { return tensile > T(0) || tensile_positive > T(0); }
+    bool any_extra() const { return reconstruct || alpha_u > T(0) || stress() || central; }
     // 1 / W(dp) of the stress's f_ab (0 without the stress).
     EXASPH_HD T stress_inv_w0(const KernelView<T>& k) const {
-        return tensile > T(0) ? T(1) / k.value(eta_crit) : T(0);
+        return stress() ? T(1) / k.value(eta_crit) : T(0);
     }
 };
 
@@ -136,12 +142,14 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
     const T xa_ma = kVolumeElements ? xm[a] / m[a] : T(1);
     const T pa = T(pgrad[a]) * xa_ma;
     T ax = 0, ay = 0, az = 0, du_p = 0, du_av = 0, vsig_max = 0, divv = 0, du_cond = 0;
-    // Artificial stress (Monaghan 2000) against the tensile instability: where P < 0, the
-    // pressure coefficient of a pair gains R = eps |P/(Om k^2)| f_ab^4, f_ab = W(r)/W(dp) with dp
-    // the mean particle spacing (eta_crit h), so close pairs under tension repel. R enters both
-    // members' terms as P does, so momentum stays conserved, and du/dt takes R's work.
+    // Artificial stress (Monaghan 2000) against the tensile instability: the pressure
+    // coefficient of a pair gains R f_ab^n, R = eps |P/(Om k^2)| where P < 0 (eps_positive P
+    // where P > 0, stress_coefficient), f_ab = W(r)/W(dp) with dp the mean particle spacing
+    // (eta_crit h), so close pairs repel. R enters both members' terms as P does, so momentum
+    // stays conserved, and du/dt takes R's work.
     const T eps_ts = kExtras ? diss.tensile : T(0);
-    const T ra = pa < T(0) ? -eps_ts * pa : T(0);
+    const T eps_pos = kExtras ? diss.tensile_positive : T(0);
+    const T ra = stress_coefficient(pa, eps_ts, eps_pos);
     const T inv_w0 = kExtras ? diss.stress_inv_w0(k) : T(0);
     const int n_ts = diss.tensile_exponent;
     const bool own_stress_matrix = kExtras && diss.stress_matrix;
@@ -214,7 +222,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
         T tax = 0, tay = 0, taz = 0, tv = 0; // the own-matrix stress force and its work
         if constexpr (kExtras) {
             const T fn = stress_weight(kwa, kwb, inv_w0, n_ts);
-            const T rb = pb < T(0) ? -eps_ts * pb : T(0);
+            const T rb = stress_coefficient(pb, eps_ts, eps_pos);
             if (own_stress_matrix) {
                 const IadProduct<T> sa = stress_matrix_times(p, a, dx, dy, dz);
                 const IadProduct<T> sb = stress_matrix_times(p, b, dx, dy, dz);

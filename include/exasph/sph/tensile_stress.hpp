@@ -12,6 +12,14 @@
 // closer than about the mean spacing dp repel with eps |P/(Om k^2)| f_ab^n, f_ab = W(r)/W(dp).
 namespace exasph {
 
+// A particle's stress coefficient R from its pressure term q = P/(Om k^2): eps |q| under
+// tension, eps_positive q under compression (Monaghan 2000 applies a small stress for P > 0
+// too). Repulsive either way.
+template <class T>
+EXASPH_HD EXASPH_INLINE T stress_coefficient(T q, T eps, T eps_positive) {
+    return q < T(0) ? -eps * q : eps_positive * q;
+}
+
 // f_ab^n with f_ab = (W(r/h_a) + W(r/h_b)) / (2 W(dp)) from the kernel table's values (no 1/h^3:
 // the ratio is a shape, symmetric in a and b). n in [1, 15], by squaring with a fixed trip count
 // so that the pair loops still vectorise.

@@ -151,12 +151,28 @@ TEST(Conservation, ArtificialStressConservesMomentumAndEnergy) {
     EXPECT_GT(std::abs(on.force_sum - off.force_sum), 1e-6 * off.force_sum);
 }
 
+// The stress under compression too (--tensile-stress-positive, the wc scheme's): the pairs
+// where P > 0 gain their own term, conserving as under tension.
+TEST(Conservation, ArtificialStressUnderCompressionConservesMomentumAndEnergy) {
+    Dissipation<double> diss;
+    diss.eta_crit = 0.7;
+    diss.tensile = 0.2;
+    const Sums tension = conservation_sums(NeighbourCriterion::symmetric, false, diss, true);
+    diss.tensile_positive = 0.2;
+    const Sums both = conservation_sums(NeighbourCriterion::symmetric, false, diss, true);
+    std::printf("stress for P > 0 too: momentum %.3e energy %.3e\n", both.momentum_ratio,
+                both.energy_ratio);
+    EXPECT_LT(both.momentum_ratio, 1e-12);
+    EXPECT_LT(both.energy_ratio, 1e-10);
+    EXPECT_GT(std::abs(both.force_sum - tension.force_sum), 1e-6 * tension.force_sum);
+}
+
 // --torque-free with the stress (issue 17): the pressure's IAD matrix from its own weights, the
 // viscosity along the pair axis and the stress with its own matrix C' (tensile_stress.hpp) exert
 // no net torque on a cube with free surfaces under tension; the stress with the pressure's
 // matrix does, and that is what drifted the square patch's L_z.
 TEST(Conservation, TorqueFreeStressConservesAngularMomentum) {
-    Dissipation<double> diss = Dissipation<double>::of(1.0, 0.0, false, 100, 0.2, true, 8);
+    Dissipation<double> diss = Dissipation<double>::of(1.0, 0.0, false, 100, 0.2, true, 8, 0.2);
     ASSERT_TRUE(diss.stress_matrix);
     const auto sym = NeighbourCriterion::symmetric;
     diss.stress_matrix = false;
@@ -192,7 +208,7 @@ TEST(Conservation, GpuPathConservesMomentumAndEnergyWithEveryOption) {
     Dissipation<double> stress;
     stress.eta_crit = 0.7;
     stress.tensile = 0.2;
-    const auto torque_free = Dissipation<double>::of(1.0, 0.0, false, 100, 0.2, true, 8);
+    const auto torque_free = Dissipation<double>::of(1.0, 0.0, false, 100, 0.2, true, 8, 0.2);
     const Sums runs[] = {conservation_sums<G>(sym),
                          conservation_sums<G>(sym, true),
                          conservation_sums<G>(sym, true, Dissipation<double>{1.0}),
