@@ -5,6 +5,7 @@
 #include "exasph/sph/density_kern.hpp"
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/sph/softening_correction_kern.hpp"
 #include "exasph/sph/stir_kern.hpp"
 #include "exasph/sph/update_kern.hpp"
 #include "launch.cuh"
@@ -32,6 +33,8 @@ namespace exasph {
 #define EXASPH_CUDA_PASSES(N)                                                                      \
     EXASPH_CUDA_NEIGHBOURS(DensityEosKernel<double, N>)                                            \
     EXASPH_CUDA_NEIGHBOURS(IadKernel<double, N>)                                                   \
+    EXASPH_CUDA_NEIGHBOURS(SofteningZetaKernel<double, N>)                                         \
+    EXASPH_CUDA_NEIGHBOURS(SofteningForceKernel<double, N>)                                        \
     EXASPH_CUDA_MOMENTUM(N)                                                                        \
     EXASPH_CUDA_FOR_EACH(StateUpdateKernel<double, N>)                                             \
     EXASPH_CUDA_FOR_EACH(SmoothingLengthKernel<double, N>)                                         \

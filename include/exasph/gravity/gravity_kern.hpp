@@ -3,7 +3,7 @@
 #include <cstdint>
 
 #include "exasph/gravity/gravity_node.hpp"
-#include "exasph/gravity/softening.hpp"
+#include "exasph/kernel/softening.hpp"
 #include "exasph/util/annotate.hpp"
 
 namespace exasph {

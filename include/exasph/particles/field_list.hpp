@@ -57,6 +57,7 @@ enum class Field : std::uint8_t {
     xm,    // volume-element weight X (= m for standard SPH; (m/rho)^p with volume elements)
     kx,    // volume-element normalisation k = sum_b X_b W_ab
     phi,   // gravitational potential (SPEC 8; 0 without gravity)
+    gsoft, // the softening correction's xi (sph/softening_correction_kern.hpp; with gravity)
     stir,  // power per unit mass of the stirring force, v . a_stir (driven turbulence)
     // Velocity gradient dv_i/dx_j (IAD), only with --av-limiter: the slope of the velocity
     // reconstruction in the artificial viscosity.
@@ -145,6 +146,7 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::xm,       "xm",       "volume^p",    kState | kHaloSync | kOptional, "volume-element weight X"},
     {Field::kx,       "kx",       "volume^(p-1)", kDerived | kHaloDensity | kOptional, "volume-element normalisation k"},
     {Field::phi,      "phi",      "energy/mass", kDerived | kSnapshot | kOptional, "gravitational potential"},
+    {Field::gsoft,    "gsoft",    "length^5/(mass*time^2)", kDerived | kHaloDensity | kOptional, "softening correction xi"},
     {Field::stir,     "stir_power", "energy/mass/time", kDerived | kOptional, "power per unit mass of the stirring force"},
     {Field::gxx,      "dvx_dx",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvx/dx"},
     {Field::gxy,      "dvx_dy",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvx/dy"},

@@ -92,9 +92,8 @@ class Simulation {
         timer_.end_step();
     }
 
-    // Silent-data-corruption handling (sim/safety.hpp): how many times the run was rolled back,
-    // and whether the last step() ended in a rollback instead of a step (then diagnostics() are
-    // those of the step rolled back to, and the steps after it are computed again).
+    // Silent-data-corruption handling (sim/safety.hpp): the rollbacks so far, and whether the
+    // last step() was one (then diagnostics() are those of the step rolled back to).
     std::int64_t recoveries() const { return safety_.recoveries(); }
     bool recovered() const { return recovered_; }
     const std::string& sdc_detail() const { return safety_.detail(); }
@@ -161,7 +160,7 @@ class Simulation {
                               "summation) is not implemented; run with --G 0",
                               true);
         gravity_.emplace(kernel_, G, cfg_.theta, std::uint32_t(cfg_.gravity_leaf_size));
-        ps_.enable(Field::phi);
+        ps_.enable(Field::phi), ps_.enable(Field::gsoft);
     }
 
     void start() {
@@ -194,6 +193,8 @@ class Simulation {
             settle_volume_weights<L>(ps_, nlists_, box_, k, eos_, n_owned(),
                                      [&] { domain_.exchange_halos(ps_, kHaloSync); });
         compute_density<L>(ps_, nlists_, box_, k, eos_, step_ == 0 && eos_.kind == EosKind::tait);
+        if (gravity_)
+            compute_softening_zeta<L>(ps_, nlists_, gravity_->softening().view(), gravity_->G());
         timer_.stop(kDensity);
         domain_.exchange_halos(ps_, kHaloDensity);
         timer_.stop(kDensityHalos);
@@ -204,13 +205,13 @@ class Simulation {
         domain_.exchange_halos(ps_, cfg_.av_limiter ? kHaloIad | kHaloGrad : kHaloIad);
         timer_.stop(kIad);
         courant_dt_ = compute_momentum_energy<L>(ps_, nlists_, box_, k, diss, T(cfg_.courant));
+        if (gravity_) add_softening_correction<L>(ps_, nlists_, k); // SPEC 8's softening
         nlists_.release(); // not needed again this step: the sync can use their memory
         timer_.stop(kMomentumEnergy);
     }
 
-    // SPEC 7: Courant limit over all particles (from the momentum-energy pass; with gravity also
-    // the acceleration limit), at most 1.1 x the previous step; the first step is the case's dt0
-    // (or less, if the limits demand it). One collective (min).
+    // SPEC 7: Courant limit (from the momentum-energy pass; with gravity also the acceleration
+    // limit), at most 1.1 x the previous step; the first step is the case's dt0 (or less).
     double choose_time_step() {
         double dt_min = std::min(courant_dt_, std::numeric_limits<double>::max());
         if (gravity_ && cfg_.accel_eps > 0)
@@ -256,8 +257,7 @@ class Simulation {
         timer_.end_step();
     }
 
-    // SPEC 10 sums, the run-control flags and the extent of the particles for next step's box:
-    // one collective.
+    // SPEC 10 sums, run-control flags and the particles' extent (next box): one collective.
     void diagnose(double dt) {
         std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags);
         local_diagnostics(ps_, n_owned(), domain_.n_halo(), exact_, time_ - dt, e.data());

@@ -90,6 +90,8 @@ struct DensityEosKernel {
         // k = rho for standard SPH (the stored value, as the pair terms read it)
         const T kk = p[Field::kx] ? r.kx : T(rho);
         p.narrow(Field::pgrad)[i] = N(e.p / (r.omega * kk * kk));
+        // With gravity: dh/dk / Omega, which the softening correction's zeta multiplies
+        if (p[Field::gsoft]) p[Field::gsoft][i] = -p[Field::h][i] / (T(3) * kk * r.omega);
     }
 };
 

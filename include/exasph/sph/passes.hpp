@@ -9,6 +9,7 @@
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/launch.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/sph/softening_correction_kern.hpp"
 #include "exasph/sph/stir_kern.hpp"
 #include "exasph/sph/update_kern.hpp"
 #include "exasph/util/error.hpp"
@@ -78,6 +79,26 @@ double compute_momentum_energy(ParticleSet<T>& ps, const Lists& nl, const Box<T>
                                    : with_ve(extras, std::false_type{});
         };
         return diss.any_extra() ? with_alpha(std::true_type{}) : with_alpha(std::false_type{});
+    });
+}
+
+// The gravitational softening's correction (sph/softening_correction_kern.hpp): xi after the
+// density pass, before its halo exchange ...
+template <class L = DefaultLauncher, class T, class Lists>
+void compute_softening_zeta(ParticleSet<T>& ps, const Lists& nl, const SofteningView<T>& soft,
+                            double G) {
+    with_view(ps, [&](auto p) {
+        using N = typename decltype(p)::narrow_type;
+        L::for_each_neighbourhood(nl, SofteningZetaKernel<T, N>{p, soft, T(G)});
+    });
+}
+
+// ... and its force, added to the accelerations after the momentum-energy pass.
+template <class L = DefaultLauncher, class T, class Lists>
+void add_softening_correction(ParticleSet<T>& ps, const Lists& nl, const KernelView<T>& k) {
+    with_view(ps, [&](auto p) {
+        using N = typename decltype(p)::narrow_type;
+        L::for_each_neighbourhood(nl, SofteningForceKernel<T, N>{p, k});
     });
 }
 

@@ -4,6 +4,7 @@
 
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/util/annotate.hpp"
+#include "exasph/util/field_memory.hpp"
 
 namespace exasph {
 
@@ -77,7 +78,7 @@ class SofteningTable {
         return s * h / 3.0;
     }
 
-    std::vector<T> force_, potential_;
+    FieldArray<T> force_, potential_; // read by the kernels, on a device too
     double enclosed_ = 0;
 };
 
