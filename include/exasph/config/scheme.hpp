@@ -60,18 +60,19 @@ inline constexpr std::array<SchemeValue, kSchemeValues> kVeScheme{{{"alpha", 1},
 // seeds of v_z, which the patch's layer instability grew to |v_z|/max|v_xy| = 1.2e-2 by t = 0.5 (-n
 // 20). With ng0 100 that instability grows v_z from 1e-14 to 1e-3 between t = 0.25 and 0.5 (-n 20);
 // with 250 it stays below 1e-5 (-n 20, -n 30).
-inline constexpr std::array<SchemeValue, kSchemeValues> kWcScheme{{{"alpha", 1},
-                                                                   {"av_switch", 0},
-                                                                   {"conductivity", 0},
-                                                                   {"av_limiter", 0},
-                                                                   {"volume_elements", 0},
-                                                                   {"tensile_stress", 0.3},
-                                                                   {"torque_free", 1},
-                                                                   {"double_precision", 1},
-                                                                   {"tensile_exponent", 6},
-                                                                   {"tensile_stress_positive", 0.03},
-                                                                   {"ng0", 250},
-                                                                   {"ngmax", 300}}};
+inline constexpr std::array<SchemeValue, kSchemeValues> kWcScheme{
+    {{"alpha", 1},
+     {"av_switch", 0},
+     {"conductivity", 0},
+     {"av_limiter", 0},
+     {"volume_elements", 0},
+     {"tensile_stress", 0.3},
+     {"torque_free", 1},
+     {"double_precision", 1},
+     {"tensile_exponent", 6},
+     {"tensile_stress_positive", 0.03},
+     {"ng0", 250},
+     {"ngmax", 300}}};
 
 inline const auto& scheme_values(Scheme s) {
     return s == Scheme::ve ? kVeScheme : s == Scheme::wc ? kWcScheme : kStdScheme;
