@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "exasph/kernel/softening.hpp"
+#include "exasph/gravity/gravity_kern.hpp"
 #include "exasph/sph/passes.hpp"
 #include "kernels.hpp"
 #include "neighbour_setup.hpp"
@@ -45,18 +45,16 @@ Patch make_patch() {
     return s;
 }
 
-// E_pot's pairs with particle c, with c's smoothing length hc (G = 1).
+// E_pot's pairs with particle c, with c's smoothing length hc (G = 1): the tree's own pair law.
 double pair_energy(const ParticleSet<double>& ps, std::size_t c, double hc,
                    const SofteningView<double>& soft) {
     double e = 0;
     for (std::size_t b = 0; b < ps.size(); ++b) {
         if (b == c) continue;
-        const double dx = ps[Field::x][b] - ps[Field::x][c], dy = ps[Field::y][b] - ps[Field::y][c],
-                     dz = ps[Field::z][b] - ps[Field::z][c];
-        const double r = std::sqrt(dx * dx + dy * dy + dz * dz), h = 0.5 * (hc + ps[Field::h][b]);
-        double f, psi;
-        soft.eval(r / h, f, psi);
-        e -= ps[Field::m][c] * ps[Field::m][b] * psi / h;
+        const GravityField g = pair_field(
+            ps[Field::x][c] - ps[Field::x][b], ps[Field::y][c] - ps[Field::y][b],
+            ps[Field::z][c] - ps[Field::z][b], ps[Field::m][b], 0.5 * (hc + ps[Field::h][b]), soft);
+        e += ps[Field::m][c] * g.phi;
     }
     return e;
 }
