@@ -22,14 +22,17 @@ echo "$out" | grep -q "particle-steps/s" || fail "no summary"
 # beside a scheme keep their values.
 header() { "$exe" "$@" -s 0 --lattice --out "$work/scheme" 2>&1 | grep '^physics:'; }
 h=$(header --init square-patch -n 8)
-echo "$h" | grep -q "scheme wc, ng0 250, ngmax 300,.*conductivity 0, av_limiter off, volume_elements off, tensile_stress 0.3, tensile_exponent 6, tensile_stress_positive 0.03, torque_free on, double_precision on" ||
+echo "$h" | grep -q "scheme wc, ng0 250, ngmax 300,.*conductivity 0, av_limiter off, volume_elements off, energy_weights off, tensile_stress 0.3, tensile_exponent 6, tensile_stress_positive 0.03, torque_free on, double_precision on" ||
     fail "square-patch should default to the wc scheme: $h"
 h=$(header --init square-patch -n 8 --scheme std)
-echo "$h" | grep -q "scheme std, ng0 100, ngmax 150,.*volume_elements off, tensile_stress 0, tensile_exponent 4, tensile_stress_positive 0, torque_free off, double_precision off" ||
+echo "$h" | grep -q "scheme std, ng0 100, ngmax 150,.*volume_elements off, energy_weights off, tensile_stress 0, tensile_exponent 4, tensile_stress_positive 0, torque_free off, double_precision off" ||
     fail "--scheme std for square-patch: $h"
 h=$(header --init sedov -n 8)
-echo "$h" | grep -q "scheme ve,.*conductivity 1, av_limiter on, volume_elements on" ||
+echo "$h" | grep -q "scheme ve,.*conductivity 1, av_limiter on, volume_elements on, energy_weights off" ||
     fail "sedov should default to the ve scheme: $h"
+h=$(header --init isobaric-cube -n 8)
+echo "$h" | grep -q "scheme pe, ng0 200, ngmax 300,.*conductivity 0, av_limiter on, volume_elements on, energy_weights on" ||
+    fail "isobaric-cube should default to the pe scheme: $h"
 h=$(header --init sedov -n 8 --scheme std)
 echo "$h" | grep -q "scheme std,.*conductivity 0, av_limiter off, volume_elements off" ||
     fail "--scheme std: $h"
@@ -73,6 +76,8 @@ expect_rejected "smoothing length" -n 4 -s 1
 expect_rejected "--theta" --init evrard --theta 1.5
 expect_rejected "open box" --init sedov --lattice -n 10 --G 1 -s 1
 expect_rejected "--curve" --curve peano
+expect_rejected "--energy-weights" --init sedov -n 10 -s 1 --scheme std --energy-weights
+expect_rejected "ideal-gas" --init square-patch -n 10 -s 1 --scheme pe
 expect_rejected "--on-sdc" --on-sdc maybe
 expect_rejected "--backend" --backend tpu
 # Issue 18, acceptance 3: where auto falls back to the CPU (no device, or a build without CUDA),

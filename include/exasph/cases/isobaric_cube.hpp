@@ -14,7 +14,10 @@ namespace exasph {
 // at rest in pressure balance with light gas in the periodic box [-0.5, 0.5)^3. Equal masses:
 // with density contrast 8 the inner cube holds as many points per axis as the whole box (the
 // same points at half the spacing). Exactly in equilibrium: any motion is the scheme's error
-// at the contact discontinuity.
+// at the contact discontinuity. The points are two nested lattices, not glasses (as in Saitoh &
+// Makino 2013's and Hopkins 2015's square tests): the union of a glass and its shrunk copy is
+// not relaxed at the interface, and its noise moved the particles by ~2 inner spacings (rms) by
+// t = 2 with every scheme, eroding the corners that the test measures (docs/validation.md).
 struct IsobaricCubeParams {
     int side = 20; // particles across the box outside the cube (and across the cube inside)
     double ng0 = 100;
@@ -46,7 +49,7 @@ InitialConditions<T> make_isobaric_cube(const IsobaricCubeParams& cp, const Case
     ic.box.lo = {T(-0.5), T(-0.5), T(-0.5)};
     ic.box.hi = {T(0.5), T(0.5), T(0.5)};
     ic.box.periodic = {true, true, true};
-    const UnitCubePoints points = ctx.points();
+    const UnitCubePoints points = UnitCubePoints::lattice(std::uint64_t(cp.side));
     const std::uint64_t n = points.size();
     std::uint64_t first = 0, last = 0;
     points.share(ctx.rank, ctx.nranks, first, last);
@@ -72,16 +75,21 @@ InitialConditions<T> make_isobaric_cube(const IsobaricCubeParams& cp, const Case
 }
 
 inline const CaseInfo& isobaric_cube_case() {
-    static const CaseInfo info = case_info<IsobaricCubeParams>(
-        "isobaric-cube",
-        "Isobaric cube: a dense cube (contrast 8) at rest in pressure balance, periodic box", true,
-        {{"pressure", &IsobaricCubeParams::pressure, "the uniform pressure"},
-         {"gamma", &IsobaricCubeParams::gamma, "adiabatic index"},
-         {"dt0", &IsobaricCubeParams::dt0, "first time step"},
-         {"t_end", &IsobaricCubeParams::t_end, "end time"}},
-        [](const IsobaricCubeParams& p, const CaseContext& c) {
-            return make_isobaric_cube<double>(p, c);
-        });
+    // A contact discontinuity at rest: the pe scheme (energy weights, no conductivity) by
+    // default (config/scheme.hpp).
+    static const CaseInfo info = with_scheme(
+        Scheme::pe,
+        case_info<IsobaricCubeParams>(
+            "isobaric-cube",
+            "Isobaric cube: a dense cube (contrast 8) at rest in pressure balance, periodic box",
+            false,
+            {{"pressure", &IsobaricCubeParams::pressure, "the uniform pressure"},
+             {"gamma", &IsobaricCubeParams::gamma, "adiabatic index"},
+             {"dt0", &IsobaricCubeParams::dt0, "first time step"},
+             {"t_end", &IsobaricCubeParams::t_end, "end time"}},
+            [](const IsobaricCubeParams& p, const CaseContext& c) {
+                return make_isobaric_cube<double>(p, c);
+            }));
     return info;
 }
 

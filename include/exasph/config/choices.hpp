@@ -33,8 +33,8 @@ struct Choices<RollbackStore> {
 
 template <>
 struct Choices<Scheme> {
-    static constexpr std::array<std::pair<std::string_view, Scheme>, 3> values{
-        {{"std", Scheme::std_sph}, {"ve", Scheme::ve}, {"wc", Scheme::wc}}};
+    static constexpr std::array<std::pair<std::string_view, Scheme>, 4> values{
+        {{"std", Scheme::std_sph}, {"ve", Scheme::ve}, {"wc", Scheme::wc}, {"pe", Scheme::pe}}};
 };
 
 template <>

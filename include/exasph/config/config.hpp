@@ -10,7 +10,7 @@ namespace exasph {
 // Closed choices of the command line (their names: config/choices.hpp).
 enum class SdcPolicy { rollback, abort, off };     // --on-sdc
 enum class RollbackStore { disk, memory };         // --sdc-rollback-store
-enum class Scheme { std_sph, ve, wc };             // --scheme (config/scheme.hpp)
+enum class Scheme { std_sph, ve, wc, pe };         // --scheme (config/scheme.hpp)
 enum class BackendChoice { cpu, cuda, automatic }; // --backend (run/backend.hpp)
 
 // Everything a run is configured with. Each member that the command line sets is declared
@@ -36,6 +36,7 @@ struct Config {
     double conductivity = 0.0;    // artificial conductivity alpha_u (0: off)
     bool av_limiter = false;      // viscosity from limited midpoint-reconstructed velocities
     bool volume_elements = false; // generalised volume elements X = (m/rho)^0.7
+    bool energy_weights = false;  // with them, X = m u (pressure-energy SPH) instead
     double tensile_stress = 0.0;  // artificial stress for negative pressures (Monaghan 2000)
     int tensile_exponent = 4;     // n of the stress's (W(r)/W(dp))^n
     double tensile_stress_positive = 0.0; // the artificial stress's eps for positive pressures

@@ -70,17 +70,19 @@ inline const std::array kParameters{
     // Physics
     Param{"--scheme", "scheme", "Formulation: std (the paper's: standard SPH volumes, alpha "
           "viscosity on every approaching pair, no conductivity), ve (generalised volume "
-          "elements, slope-limited viscosity, conductivity 1: the recommended one) or wc (std "
+          "elements, slope-limited viscosity, conductivity 1: the recommended one), wc (std "
           "for weakly compressible liquids under tension: artificial stress 0.3 with exponent "
-          "6, torque-free forces, double-precision derived fields, 250 neighbours); options "
-          "given beside it override its values (default: "
-          "the case's scheme, wc for square-patch, ve for the others and for files)", "",
+          "6, torque-free forces, double-precision derived fields, 250 neighbours) or pe (ve "
+          "for contact discontinuities at rest: energy weights X = m u, no conductivity, 200 "
+          "neighbours); "
+          "options given beside it override its values (default: the case's scheme, wc for "
+          "square-patch, pe for isobaric-cube, ve for the others and for files)", "",
           OnRestart::kept,
           &Config::scheme, {}, false},
-    Param{"--ng0", "ng0", "Target number of neighbours (set by --scheme: 250 wc, else 100)", "",
+    Param{"--ng0", "ng0", "Target number of neighbours (set by --scheme: 250 wc, 200 pe, else 100)", "",
           OnRestart::kept, &Config::ng0, in_range(10, 1000)},
     Param{"--ngmax", "ngmax", "Neighbour cap; exceeding it is reported (lists are never "
-          "truncated) (set by --scheme: 300 wc, else 150)", "", OnRestart::kept, &Config::ngmax,
+          "truncated) (set by --scheme: 300 wc and pe, else 150)", "", OnRestart::kept, &Config::ngmax,
           in_range(10, 4000)},
     Param{"--kernel-exponent", "kernel_exponent", "Sinc kernel exponent n", "", OnRestart::kept,
           &Config::kernel_exponent, in_range(3, 12)},
@@ -101,8 +103,13 @@ inline const std::array kParameters{
           "dissipation in smooth compression, full at shocks (on in the ve scheme)", "",
           OnRestart::kept, &Config::av_limiter},
     Param{"--volume-elements", "volume_elements", "Generalised volume elements X = (m/rho)^0.7 "
-          "instead of standard SPH volumes (on in the ve scheme)", "", OnRestart::kept,
+          "instead of standard SPH volumes (on in the ve and pe schemes)", "", OnRestart::kept,
           &Config::volume_elements},
+    Param{"--energy-weights", "energy_weights", "With --volume-elements: the weights X = m u "
+          "(pressure-energy SPH, Saitoh & Makino 2013; Hopkins 2013), so that P = (gamma - 1) "
+          "sum_b m_b u_b W_ab is smooth across a contact discontinuity in pressure balance; "
+          "ideal gas with u > 0 only (on in the pe scheme)", "", OnRestart::kept,
+          &Config::energy_weights},
     Param{"--tensile-stress", "tensile_stress", "Artificial stress against the tensile "
           "instability (Monaghan 2000): pairs of particles under negative pressure repel with "
           "eps |P|/rho^2 (W(r)/W(dp))^n; acts only where P < 0 (weakly compressible fluids); 0 "

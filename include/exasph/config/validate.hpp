@@ -26,6 +26,10 @@ inline void validate_config(const Config& cfg) {
         throw input_error("--ngmax " + std::to_string(cfg.ngmax) + " must be at least --ng0 " +
                               format_number(cfg.ng0),
                           true);
+    if (cfg.energy_weights && !cfg.volume_elements)
+        throw input_error("--energy-weights chooses the weights of the volume elements: it needs "
+                          "--volume-elements (or --scheme pe)",
+                          true);
     if (cfg.checkpoint_auto && !(cfg.mtbf_hours > 0))
         throw input_error("--checkpoint-every auto needs --mtbf HOURS (the MTBF of one node)",
                           true);

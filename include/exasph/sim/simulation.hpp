@@ -17,6 +17,7 @@
 #include "exasph/kernel/sinc_kernel.hpp"
 #include "exasph/sim/control_flags.hpp"
 #include "exasph/sim/diagnostics.hpp"
+#include "exasph/sim/eos_requirements.hpp"
 #include "exasph/sim/initial_potential.hpp"
 #include "exasph/sim/phases.hpp"
 #include "exasph/sim/safety.hpp"
@@ -149,8 +150,7 @@ class Simulation {
         if (cfg_.av_switch) ps_.enable(Field::alpha), ps_.enable(Field::divv);
         if (cfg_.volume_elements) ps_.enable(Field::xm), ps_.enable(Field::kx);
         ps_.set_narrow_single(!cfg_.double_precision); // --double-precision
-        if (eos_.kind == EosKind::tait && !(ps_.enabled(Field::rho0) && ps_.enabled(Field::p0)))
-            throw input_error("the Tait EOS needs the reference fields rho0 and p0", true);
+        require_eos_inputs(ps_, ps_.size(), eos_, cfg_.energy_weights, domain_.collectives());
     }
 
     void start_gravity(double G) {
@@ -190,7 +190,7 @@ class Simulation {
     void hydro_forces() {
         const auto k = kernel_.view();
         if (step_ == 0 && cfg_.volume_elements)
-            settle_volume_weights<L>(ps_, nlists_, box_, k, eos_, n_owned(),
+            settle_volume_weights<L>(ps_, nlists_, box_, k, eos_, n_owned(), cfg_.energy_weights,
                                      [&] { domain_.exchange_halos(ps_, kHaloSync); });
         compute_density<L>(ps_, nlists_, box_, k, eos_, step_ == 0 && eos_.kind == EosKind::tait);
         if (gravity_)
@@ -229,7 +229,7 @@ class Simulation {
         if (cfg_.av_switch) update_viscosity<L>(ps_, n_owned(), dt, cfg_.alpha_min, cfg_.alpha);
         timer_.stop(kUpdate);
         update_smoothing_lengths<L>(ps_, n_owned(), cfg_.ng0);
-        if (cfg_.volume_elements) update_volume_weights<L>(ps_, n_owned());
+        if (cfg_.volume_elements) update_volume_weights<L>(ps_, n_owned(), cfg_.energy_weights);
         if (stirring_) stirring_->advance(step_, dt);
         timer_.stop(kSmoothingLength);
         time_ += dt;
@@ -285,9 +285,8 @@ class Simulation {
     SafetyNet<T> safety_;
     PhaseTimer<kNumPhases> timer_;
     Diagnostics diag_;
-    double time_ = 0.0, dt_m1_, dt0_, t_end_ = -1.0;
+    double time_ = 0.0, dt_m1_, dt0_, t_end_ = -1.0, mass0_ = 0;
     double courant_dt_ = 0; // Courant limit of this step's particles (momentum-energy pass)
-    double mass0_ = 0;
     std::int64_t step_ = 0;
     std::uint32_t max_list_ = 0;
     bool recovered_ = false;

@@ -138,11 +138,11 @@ void add_stirring(ParticleSet<T>& ps, std::size_t n, const StirModes& modes) {
     });
 }
 
-// Volume elements for the next step (VolumeWeightKernel).
+// Volume elements for the next step (VolumeWeightKernel; `energy`: X = m u).
 template <class L = DefaultLauncher, class T>
-void update_volume_weights(ParticleSet<T>& ps, std::size_t n) {
+void update_volume_weights(ParticleSet<T>& ps, std::size_t n, bool energy) {
     with_view(ps, [&](auto p) {
-        L::for_each(n, VolumeWeightKernel<T, typename decltype(p)::narrow_type>{p});
+        L::for_each(n, VolumeWeightKernel<T, typename decltype(p)::narrow_type>{p, energy});
     });
 }
 
@@ -150,14 +150,14 @@ void update_volume_weights(ParticleSet<T>& ps, std::size_t n) {
 // density passes, each with X = (m/rho)^0.7 of the pass before, let the weights settle, so that
 // a contact discontinuity of the initial conditions (the isobaric cube, the Kelvin-Helmholtz
 // layers) does not start with standard SPH's full pressure blip. exchange_x() sends X to the
-// halos.
+// halos. Energy weights (X = m u) need no density: one pass sets them.
 template <class L = DefaultLauncher, class T, class Lists, class ExchangeX>
 void settle_volume_weights(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box,
-                           const KernelView<T>& k, const EosParams& eos, std::size_t n,
-                           ExchangeX exchange_x, int passes = 4) {
-    for (int pass = 0; pass < passes; ++pass) {
-        compute_density<L>(ps, nl, box, k, eos);
-        update_volume_weights<L>(ps, n);
+                           const KernelView<T>& k, const EosParams& eos, std::size_t n, bool energy,
+                           ExchangeX exchange_x) {
+    for (int pass = 0; pass < (energy ? 1 : 4); ++pass) {
+        if (!energy) compute_density<L>(ps, nl, box, k, eos);
+        update_volume_weights<L>(ps, n, energy);
         exchange_x();
     }
 }

@@ -68,13 +68,22 @@ struct ViscosityKernel {
 inline constexpr double kAlphaDecay = 0.2;
 
 // Generalised volume elements: X_a = (m_a / rho_a)^p from this step's density, used by the
-// next step (Hopkins 2013 / Cabezon et al. 2017 with p = 0.7).
+// next step (Hopkins 2013 / Cabezon et al. 2017 with p = 0.7). With `energy` (--energy-weights)
+// X_a = m_a u_a, pressure-energy SPH (Saitoh & Makino 2013): rho_a = m_a k_a / X_a gives
+// P_a = (gamma - 1) rho_a u_a = (gamma - 1) k_a = (gamma - 1) sum_b m_b u_b W_ab(h_a), the
+// pressure smoothed directly, so a contact in pressure balance has no pressure blip; and X
+// needs no density, so it is exact from the first step.
 inline constexpr double kVolumeElementExponent = 0.7;
 template <class T, class N = float>
 struct VolumeWeightKernel {
     ParticleView<T, N> p;
+    bool energy = false;
 
     EXASPH_HD void operator()(std::uint32_t i) const {
+        if (energy) {
+            p[Field::xm][i] = p[Field::m][i] * p[Field::u][i];
+            return;
+        }
         const double v = double(p[Field::m][i] / p.narrow(Field::rho)[i]);
         p[Field::xm][i] = T(std::pow(v, kVolumeElementExponent));
     }

@@ -68,6 +68,47 @@ TEST_P(LatticeDensity, MatchesTrueDensityOmegaIsOneAndEosIsApplied) {
 
 INSTANTIATE_TEST_SUITE_P(NeighbourCounts, LatticeDensity, ::testing::Values(100.0, 250.0));
 
+// --energy-weights (pressure-energy SPH): with X = m u the pressure is the smoothed energy
+// density, P_a = (gamma - 1) sum_b m_b u_b W_ab(h_a), whatever u does between particles: a jump
+// in u by 8 across the box here (the isobaric cube's contrast) enters P only through the sum.
+TEST(EnergyWeights, PressureIsTheSmoothedEnergyDensity) {
+    Prepared s;
+    s.ps = testref::periodic_lattice(16, 100, s.box);
+    prepare(s);
+    const std::size_t n = s.ps.size();
+    for (std::size_t i = 0; i < n; ++i)
+        s.ps[Field::u][i] = (s.ps[Field::x][i] < 8 ? 1.0 : 8.0) * (1 + 0.1 * double(i % 7) / 7);
+    s.ps.enable(Field::xm), s.ps.enable(Field::kx);
+    update_volume_weights(s.ps, n, true);
+    EXPECT_DOUBLE_EQ(s.ps[Field::xm][5], s.ps[Field::m][5] * s.ps[Field::u][5]);
+    const auto& k = testref::sinc6();
+    compute_density(s.ps, s.nl, s.box, k.view());
+    double worst = 0, p_min = 1e30, p_max = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double h = s.ps[Field::h][i];
+        double sum = s.ps[Field::m][i] * s.ps[Field::u][i] * k.view().value(0.0);
+        for (const std::uint32_t b : s.nl.list(std::uint32_t(i))) {
+            double r2 = 0;
+            for (const Field f : {Field::x, Field::y, Field::z}) {
+                double d = s.ps[f][b] - s.ps[f][i];
+                d -= 16 * std::round(d / 16); // the periodic image
+                r2 += d * d;
+            }
+            if (r2 < 4 * h * h)
+                sum += s.ps[Field::m][b] * s.ps[Field::u][b] * k.view().value(std::sqrt(r2) / h);
+        }
+        const double p_direct = (5.0 / 3.0 - 1.0) * sum / (h * h * h);
+        const double p = s.ps.narrow(Field::p)[i];
+        worst = std::max(worst, std::abs(p / p_direct - 1));
+        p_min = std::min(p_min, p), p_max = std::max(p_max, p);
+    }
+    EXPECT_LT(worst, 1e-5); // single-precision storage of P
+    // The smoothed pressure spans the jump: between the two sides' (2/3) u_min and (2/3) u_max.
+    EXPECT_GT(p_min, 0.66);
+    EXPECT_LT(p_max, 8 * 1.1 * 0.67);
+    EXPECT_GT(p_max / p_min, 4.0);
+}
+
 // --double-precision: the derived fields move to double storage with their values, the passes
 // then store the kernels' double results unrounded, and the single-precision accessor refuses.
 TEST(DerivedFieldPrecision, DoubleStorageKeepsTheKernelsResultsUnrounded) {
