@@ -79,10 +79,12 @@ inline const std::array kParameters{
           "square-patch, pe for isobaric-cube, ve for the others and for files)", "",
           OnRestart::kept,
           &Config::scheme, {}, false},
-    Param{"--ng0", "ng0", "Target number of neighbours (set by --scheme: 250 wc, 200 pe, else 100)", "",
+    Param{"--ng0", "ng0", "Target number of neighbours (set by --scheme: 250 wc, 200 pe, else "
+          "100)", "",
           OnRestart::kept, &Config::ng0, in_range(10, 1000)},
     Param{"--ngmax", "ngmax", "Neighbour cap; exceeding it is reported (lists are never "
-          "truncated) (set by --scheme: 300 wc and pe, else 150)", "", OnRestart::kept, &Config::ngmax,
+          "truncated) (set by --scheme: 300 wc and pe, else 150)", "", OnRestart::kept,
+          &Config::ngmax,
           in_range(10, 4000)},
     Param{"--kernel-exponent", "kernel_exponent", "Sinc kernel exponent n", "", OnRestart::kept,
           &Config::kernel_exponent, in_range(3, 12)},

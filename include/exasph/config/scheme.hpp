@@ -1,6 +1,7 @@
 #pragma once
 #include <array>
 #include <functional>
+#include <stdexcept>
 #include <string_view>
 #include <type_traits>
 #include <variant>
@@ -88,19 +89,20 @@ inline constexpr std::array<SchemeValue, kSchemeValues> kWcScheme{
 // pressure within 5.2 % (pe); 0.93, 20 % with 100 neighbours; 0.47 with conductivity 1; 0.26
 // with ve; 0.00 with ve without conductivity (docs/validation.md). Not for shocks into cold
 // gas, where u jumps by orders of magnitude within a kernel.
-inline constexpr std::array<SchemeValue, kSchemeValues> kPeScheme{{{"alpha", 1},
-                                                                   {"av_switch", 0},
-                                                                   {"conductivity", 0},
-                                                                   {"av_limiter", 1},
-                                                                   {"volume_elements", 1},
-                                                                   {"energy_weights", 1},
-                                                                   {"tensile_stress", 0},
-                                                                   {"torque_free", 0},
-                                                                   {"double_precision", 0},
-                                                                   {"tensile_exponent", 4},
-                                                                   {"tensile_stress_positive", 0},
-                                                                   {"ng0", 200},
-                                                                   {"ngmax", 300}}};
+// A scheme that is `base` with some values changed (each key must be in base).
+template <std::size_t N>
+constexpr std::array<SchemeValue, kSchemeValues>
+scheme_with(std::array<SchemeValue, kSchemeValues> base, const SchemeValue (&changes)[N]) {
+    for (const SchemeValue& c : changes) {
+        std::size_t found = 0;
+        for (SchemeValue& v : base)
+            if (v.key == c.key) v.value = c.value, ++found;
+        if (found != 1) throw std::logic_error("scheme_with: unknown key");
+    }
+    return base;
+}
+inline constexpr auto kPeScheme = scheme_with(
+    kVeScheme, {{"conductivity", 0}, {"energy_weights", 1}, {"ng0", 200}, {"ngmax", 300}});
 
 inline const auto& scheme_values(Scheme s) {
     switch (s) {
