@@ -14,7 +14,7 @@ kh: the McNally et al. (2012) mode amplitude of every snapshot against time (one
 directory of snapshots, labelled with --label). slice: particles of a thin slice (|z - z_mid|
 below one smoothing length) of each snapshot, coloured by a field. wind: the wind-cloud test's
 surviving cloud fraction (cloud particles with rho >= 0.64 rho_cloud and u <= 0.9 u_wind,
-Agertz et al. 2007, for the case's default parameters) against t / tau_KH, one curve per
+Agertz et al. 2007, with the run's --param values) against t / tau_KH, one curve per
 directory. turb: driven turbulence's rms Mach number against time (from the diagnostics.csv
 beside each directory's snapshots: v_rms about the mean velocity over the sound speed of the
 mean internal energy) and the velocity power spectrum E(k) of each directory's last snapshot
@@ -135,13 +135,28 @@ def group_by_directory(paths, labels):
     return zip(labels, groups.values())
 
 
+def case_parameters(path, defaults):
+    """The case parameters a snapshot's run used: defaults overridden by its --param values."""
+    text = h5py.File(path, "r").attrs.get("case_params", "")
+    values = dict(defaults)
+    for kv in (text.decode() if isinstance(text, bytes) else str(text)).split():
+        key, _, value = kv.partition("=")
+        if key in values:
+            values[key] = float(value)
+    return values
+
+
+WIND_CLOUD_DEFAULTS = {"contrast": 10.0, "u_wind": 1.5, "radius": 0.025, "v_wind": 2.7}
+
+
 def wind(args):
-    contrast, u_wind, radius, v_wind = 10.0, 1.5, 0.025, 2.7
-    tau_kh = 1.6 * 2 * radius * np.sqrt(contrast) / v_wind
     fig, ax = plt.subplots(figsize=(6, 4))
     for label, paths in group_by_directory(args.snapshots, args.label):
         pts = []
         for p in paths:
+            w = case_parameters(p, WIND_CLOUD_DEFAULTS)
+            contrast, u_wind = w["contrast"], w["u_wind"]
+            tau_kh = 1.6 * 2 * w["radius"] * np.sqrt(contrast) / w["v_wind"]
             d = read_snapshot(p, ["id", "rho", "u"])
             side = int(h5py.File(p, "r").attrs.get("param:side", 0))
             cloud = d["id"] >= 4 * side ** 3

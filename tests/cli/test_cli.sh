@@ -33,6 +33,11 @@ echo "$h" | grep -q "scheme ve,.*conductivity 1, av_limiter on, volume_elements 
 h=$(header --init isobaric-cube -n 8)
 echo "$h" | grep -q "scheme pe, ng0 200, ngmax 300,.*conductivity 0, av_limiter on, volume_elements on, energy_weights on" ||
     fail "isobaric-cube should default to the pe scheme: $h"
+for c in kelvin-helmholtz wind-cloud; do
+    h=$(header --init $c -n 16)
+    echo "$h" | grep -q "scheme sh, ng0 100, ngmax 150,.*av_switch on,.*conductivity 0, av_limiter on, volume_elements on, energy_weights off" ||
+        fail "$c should default to the sh scheme: $h"
+done
 h=$(header --init sedov -n 8 --scheme std)
 echo "$h" | grep -q "scheme std,.*conductivity 0, av_limiter off, volume_elements off" ||
     fail "--scheme std: $h"

@@ -94,21 +94,25 @@ InitialConditions<T> make_kelvin_helmholtz(const KelvinHelmholtzParams& kp,
 }
 
 inline const CaseInfo& kelvin_helmholtz_case() {
-    static const CaseInfo info = case_info<KelvinHelmholtzParams>(
-        "kelvin-helmholtz",
-        "Kelvin-Helmholtz instability, a dense band (contrast 2) shearing past light gas "
-        "(thin slab, lattices)",
-        false,
-        {{"speed", &KelvinHelmholtzParams::speed, "speed of each stream"},
-         {"seed", &KelvinHelmholtzParams::seed, "amplitude of the seed v_y"},
-         {"layer", &KelvinHelmholtzParams::layer, "width of the shear layers"},
-         {"pressure", &KelvinHelmholtzParams::pressure, "the uniform pressure"},
-         {"gamma", &KelvinHelmholtzParams::gamma, "adiabatic index"},
-         {"dt0", &KelvinHelmholtzParams::dt0, "first time step"},
-         {"t_end", &KelvinHelmholtzParams::t_end, "end time"}},
-        [](const KelvinHelmholtzParams& p, const CaseContext& c) {
-            return make_kelvin_helmholtz<double>(p, c);
-        });
+    // A shear layer: the sh scheme (the AV switch, no conductivity) by default
+    // (config/scheme.hpp).
+    static const CaseInfo info = with_scheme(
+        Scheme::sh,
+        case_info<KelvinHelmholtzParams>(
+            "kelvin-helmholtz",
+            "Kelvin-Helmholtz instability, a dense band (contrast 2) shearing past light gas "
+            "(thin slab, lattices)",
+            false,
+            {{"speed", &KelvinHelmholtzParams::speed, "speed of each stream"},
+             {"seed", &KelvinHelmholtzParams::seed, "amplitude of the seed v_y"},
+             {"layer", &KelvinHelmholtzParams::layer, "width of the shear layers"},
+             {"pressure", &KelvinHelmholtzParams::pressure, "the uniform pressure"},
+             {"gamma", &KelvinHelmholtzParams::gamma, "adiabatic index"},
+             {"dt0", &KelvinHelmholtzParams::dt0, "first time step"},
+             {"t_end", &KelvinHelmholtzParams::t_end, "end time"}},
+            [](const KelvinHelmholtzParams& p, const CaseContext& c) {
+                return make_kelvin_helmholtz<double>(p, c);
+            }));
     return info;
 }
 

@@ -92,21 +92,23 @@ InitialConditions<T> make_wind_cloud(const WindCloudParams& wp, const CaseContex
 }
 
 inline const CaseInfo& wind_cloud_case() {
-    static const CaseInfo info = case_info<WindCloudParams>(
-        "wind-cloud",
-        "Wind-cloud (blob) test: a dense cloud (contrast 10) in a supersonic wind, periodic box "
-        "1 x 0.25 x 0.25",
-        true,
-        {{"radius", &WindCloudParams::radius, "cloud radius"},
-         {"contrast", &WindCloudParams::contrast, "cloud over wind density"},
-         {"u_wind", &WindCloudParams::u_wind, "internal energy of the wind"},
-         {"v_wind", &WindCloudParams::v_wind, "wind speed along x"},
-         {"gamma", &WindCloudParams::gamma, "adiabatic index"},
-         {"dt0", &WindCloudParams::dt0, "first time step"},
-         {"t_end", &WindCloudParams::t_end, "end time"}},
-        [](const WindCloudParams& p, const CaseContext& c) {
-            return make_wind_cloud<double>(p, c);
-        });
+    // A cloud shredded by shear at its surface: the sh scheme by default (config/scheme.hpp).
+    static const CaseInfo info = with_scheme(
+        Scheme::sh, case_info<WindCloudParams>(
+                        "wind-cloud",
+                        "Wind-cloud (blob) test: a dense cloud (contrast 10) in a supersonic wind, "
+                        "periodic box 1 x 0.25 x 0.25",
+                        true,
+                        {{"radius", &WindCloudParams::radius, "cloud radius"},
+                         {"contrast", &WindCloudParams::contrast, "cloud over wind density"},
+                         {"u_wind", &WindCloudParams::u_wind, "internal energy of the wind"},
+                         {"v_wind", &WindCloudParams::v_wind, "wind speed along x"},
+                         {"gamma", &WindCloudParams::gamma, "adiabatic index"},
+                         {"dt0", &WindCloudParams::dt0, "first time step"},
+                         {"t_end", &WindCloudParams::t_end, "end time"}},
+                        [](const WindCloudParams& p, const CaseContext& c) {
+                            return make_wind_cloud<double>(p, c);
+                        }));
     return info;
 }
 

@@ -33,8 +33,12 @@ struct Choices<RollbackStore> {
 
 template <>
 struct Choices<Scheme> {
-    static constexpr std::array<std::pair<std::string_view, Scheme>, 4> values{
-        {{"std", Scheme::std_sph}, {"ve", Scheme::ve}, {"wc", Scheme::wc}, {"pe", Scheme::pe}}};
+    static constexpr std::array<std::pair<std::string_view, Scheme>, 5> values{
+        {{"std", Scheme::std_sph},
+         {"ve", Scheme::ve},
+         {"wc", Scheme::wc},
+         {"pe", Scheme::pe},
+         {"sh", Scheme::sh}}};
 };
 
 template <>

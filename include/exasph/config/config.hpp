@@ -10,7 +10,7 @@ namespace exasph {
 // Closed choices of the command line (their names: config/choices.hpp).
 enum class SdcPolicy { rollback, abort, off };     // --on-sdc
 enum class RollbackStore { disk, memory };         // --sdc-rollback-store
-enum class Scheme { std_sph, ve, wc, pe };         // --scheme (config/scheme.hpp)
+enum class Scheme { std_sph, ve, wc, pe, sh };     // --scheme (config/scheme.hpp)
 enum class BackendChoice { cpu, cuda, automatic }; // --backend (run/backend.hpp)
 
 // Everything a run is configured with. Each member that the command line sets is declared

@@ -72,11 +72,12 @@ inline const std::array kParameters{
           "viscosity on every approaching pair, no conductivity), ve (generalised volume "
           "elements, slope-limited viscosity, conductivity 1: the recommended one), wc (std "
           "for weakly compressible liquids under tension: artificial stress 0.3 with exponent "
-          "6, torque-free forces, double-precision derived fields, 250 neighbours) or pe (ve "
+          "6, torque-free forces, double-precision derived fields, 250 neighbours), pe (ve "
           "for contact discontinuities at rest: energy weights X = m u, no conductivity, 200 "
-          "neighbours); "
-          "options given beside it override its values (default: the case's scheme, wc for "
-          "square-patch, pe for isobaric-cube, ve for the others and for files)", "",
+          "neighbours) or sh (ve for shear flows: the AV switch, no conductivity); options "
+          "given beside it override its values (default: the case's scheme, wc for "
+          "square-patch, pe for isobaric-cube, sh for kelvin-helmholtz and wind-cloud, ve for "
+          "the others and for files)", "",
           OnRestart::kept,
           &Config::scheme, {}, false},
     Param{"--ng0", "ng0", "Target number of neighbours (set by --scheme: 250 wc, 200 pe, else "
@@ -93,19 +94,22 @@ inline const std::array kParameters{
     Param{"--alpha", "alpha", "Artificial viscosity alpha (the maximum with --av-switch)", "",
           OnRestart::kept, &Config::alpha, in_range(0, 10)},
     Param{"--av-switch", "av_switch", "Per-particle artificial viscosity (Morris & Monaghan): "
-          "alpha between --alpha-min and --alpha, raised by compression", "", OnRestart::kept,
+          "alpha between --alpha-min and --alpha, raised by compression (on in the sh scheme)",
+          "", OnRestart::kept,
           &Config::av_switch},
     Param{"--alpha-min", "alpha_min", "AV switch: smallest alpha", "", OnRestart::kept,
           &Config::alpha_min, in_range(0, 10)},
     Param{"--conductivity", "conductivity", "Artificial conductivity coefficient alpha_u "
-          "(Price 2008); 0 is off (set by --scheme: 0 std, 1 ve)", "", OnRestart::kept,
+          "(Price 2008); 0 is off (set by --scheme: 1 ve, else 0)", "", OnRestart::kept,
           &Config::conductivity, in_range(0, 10)},
     Param{"--av-limiter", "av_limiter", "Artificial viscosity from velocities reconstructed "
           "linearly to each pair's midpoint with a van Leer slope limiter (Rosswog 2015): no "
-          "dissipation in smooth compression, full at shocks (on in the ve scheme)", "",
+          "dissipation in smooth compression, full at shocks (on in the ve, pe and sh "
+          "schemes)", "",
           OnRestart::kept, &Config::av_limiter},
     Param{"--volume-elements", "volume_elements", "Generalised volume elements X = (m/rho)^0.7 "
-          "instead of standard SPH volumes (on in the ve and pe schemes)", "", OnRestart::kept,
+          "instead of standard SPH volumes (on in the ve, pe and sh schemes)", "",
+          OnRestart::kept,
           &Config::volume_elements},
     Param{"--energy-weights", "energy_weights", "With --volume-elements: the weights X = m u "
           "(pressure-energy SPH, Saitoh & Makino 2013; Hopkins 2013), so that P = (gamma - 1) "

@@ -104,6 +104,16 @@ scheme_with(std::array<SchemeValue, kSchemeValues> base, const SchemeValue (&cha
 inline constexpr auto kPeScheme = scheme_with(
     kVeScheme, {{"conductivity", 0}, {"energy_weights", 1}, {"ng0", 200}, {"ngmax", 300}});
 
+// sh: ve for shear flows (Kelvin-Helmholtz, wind-cloud). alpha = 1 on every approaching close
+// pair gives the shear layer a viscosity whose damping rate nu k^2 matches the mode's growth
+// rate (KH -n 32: no growth with ve); the Morris & Monaghan switch lets alpha decay to
+// --alpha-min away from compression. No conductivity: Price's signal sqrt(|P_a - P_b| / rho)
+// feeds on the contact's pressure scatter and diffused the dense band over ~0.3 by t = 2 (KH
+// -n 32 with the switch: no billows); without it the contact stays sharp. Not ve's default:
+// ve with the switch failed Gresho-Chan (L1 0.080 against ve's 0.046; the vortex's velocity
+// noise needs alpha = 1), and ve's conductivity is Noh's wall-heating cure. docs/validation.md.
+inline constexpr auto kShScheme = scheme_with(kVeScheme, {{"av_switch", 1}, {"conductivity", 0}});
+
 inline const auto& scheme_values(Scheme s) {
     switch (s) {
     case Scheme::ve:
@@ -112,6 +122,8 @@ inline const auto& scheme_values(Scheme s) {
         return kWcScheme;
     case Scheme::pe:
         return kPeScheme;
+    case Scheme::sh:
+        return kShScheme;
     default:
         return kStdScheme;
     }

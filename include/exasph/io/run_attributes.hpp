@@ -74,7 +74,8 @@ inline void read_parameter(const h5::Group& g, const Param& p, Config& cfg) {
 
 // Attributes every output file carries on its root group: code version, units, the box and the
 // EOS (so that a snapshot can seed a new run with --init) and the run's physics parameters
-// (those the restart rule keeps, OnRestart::kept), as "param:KEY".
+// (those the restart rule keeps, OnRestart::kept), as "param:KEY", and the case's --param
+// values as "case_params".
 template <class T>
 void write_run_attributes(const h5::Group& g, const Config& cfg, const Box<T>& box,
                           const EosParams& eos, const std::string& units) {
@@ -90,6 +91,13 @@ void write_run_attributes(const h5::Group& g, const Config& cfg, const Box<T>& b
     h5::write_attribute(g, "sound_speed", eos.c0);
     for (const auto& p : kParameters)
         if (p.restart == OnRestart::kept) write_parameter(g, p, cfg);
+    // The case's --param values, so that tools measure against the case that ran (e.g. the
+    // wind-cloud's radius sets tau_KH). Absent where none was given.
+    if (!cfg.case_params.empty()) {
+        std::string joined;
+        for (const std::string& kv : cfg.case_params) joined += (joined.empty() ? "" : " ") + kv;
+        h5::write_attribute(g, "case_params", joined);
+    }
 }
 
 // Reads back the physics parameters written by write_run_attributes (restart). A file from

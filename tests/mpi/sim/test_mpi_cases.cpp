@@ -3,8 +3,9 @@
 // collapse with self-gravity, accelerations and potentials included. "noh-limiter" is Noh with
 // the options of its acceptance test (limited viscosity, whose velocity gradients cross ranks as
 // halo fields; volume elements; conductivity). Issue 16, acceptance 8: the new cases with their
-// default scheme (ve; pe for isobaric-cube): gresho-chan, isobaric-cube, kelvin-helmholtz,
-// wind-cloud, turbulence (the stirring: every rank draws the same modes).
+// default scheme (ve; pe for isobaric-cube; sh, with its per-particle alpha, for kelvin-helmholtz
+// and wind-cloud): gresho-chan, isobaric-cube, kelvin-helmholtz, wind-cloud, turbulence (the
+// stirring: every rank draws the same modes).
 #include <cmath>
 
 #include "exasph/util/mpi.hpp"
