@@ -6,7 +6,6 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 out=${1:-wind-cloud-output}
 shift || true
-bash "$root/scripts/run.sh" --init wind-cloud -n 20 --param radius=0.05 --param t_end=0.75 \
-    -w 0.046875 --out "$out" "$@"
+bash "$root/scripts/run.sh" --init wind-cloud -n 20 --param radius=0.05 -w 0.046875 --out "$out" "$@"
 /usr/bin/python3 "$root/tools/case_plots.py" wind "$out"/snapshot_*.h5 -o "$out/wind-cloud.png"
 echo "figure: $out/wind-cloud.png"

@@ -24,7 +24,7 @@ struct WindCloudParams {
     double u_wind = 1.5;
     double v_wind = 2.7;
     double dt0 = 1e-5;
-    double t_end = 0.375; // 4 tau_KH
+    double t_end = 0; // 0: 4 tau_KH of the radius (0.375 for 0.025)
 };
 
 inline constexpr double kWindCloudWidth = 0.25; // the box's y and z extent; x is 4 times it
@@ -49,7 +49,7 @@ InitialConditions<T> make_wind_cloud(const WindCloudParams& wp, const CaseContex
     InitialConditions<T> ic;
     ic.name = "wind-cloud";
     ic.dt0 = wp.dt0;
-    ic.t_end = wp.t_end;
+    ic.t_end = wp.t_end > 0 ? wp.t_end : 4 * wind_cloud_tau_kh(wp);
     ic.eos = {EosKind::ideal_gas, wp.gamma, 0.0};
     ic.box.lo = {T(0), T(0), T(0)};
     ic.box.hi = {T(4 * kWindCloudWidth), T(kWindCloudWidth), T(kWindCloudWidth)};
@@ -94,21 +94,22 @@ InitialConditions<T> make_wind_cloud(const WindCloudParams& wp, const CaseContex
 inline const CaseInfo& wind_cloud_case() {
     // A cloud shredded by shear at its surface: the sh scheme by default (config/scheme.hpp).
     static const CaseInfo info = with_scheme(
-        Scheme::sh, case_info<WindCloudParams>(
-                        "wind-cloud",
-                        "Wind-cloud (blob) test: a dense cloud (contrast 10) in a supersonic wind, "
-                        "periodic box 1 x 0.25 x 0.25",
-                        true,
-                        {{"radius", &WindCloudParams::radius, "cloud radius"},
-                         {"contrast", &WindCloudParams::contrast, "cloud over wind density"},
-                         {"u_wind", &WindCloudParams::u_wind, "internal energy of the wind"},
-                         {"v_wind", &WindCloudParams::v_wind, "wind speed along x"},
-                         {"gamma", &WindCloudParams::gamma, "adiabatic index"},
-                         {"dt0", &WindCloudParams::dt0, "first time step"},
-                         {"t_end", &WindCloudParams::t_end, "end time"}},
-                        [](const WindCloudParams& p, const CaseContext& c) {
-                            return make_wind_cloud<double>(p, c);
-                        }));
+        Scheme::sh,
+        case_info<WindCloudParams>(
+            "wind-cloud",
+            "Wind-cloud (blob) test: a dense cloud (contrast 10) in a supersonic wind, "
+            "periodic box 1 x 0.25 x 0.25",
+            true,
+            {{"radius", &WindCloudParams::radius, "cloud radius"},
+             {"contrast", &WindCloudParams::contrast, "cloud over wind density"},
+             {"u_wind", &WindCloudParams::u_wind, "internal energy of the wind"},
+             {"v_wind", &WindCloudParams::v_wind, "wind speed along x"},
+             {"gamma", &WindCloudParams::gamma, "adiabatic index"},
+             {"dt0", &WindCloudParams::dt0, "first time step"},
+             {"t_end", &WindCloudParams::t_end, "end time; 0 is 4 tau_KH of the radius"}},
+            [](const WindCloudParams& p, const CaseContext& c) {
+                return make_wind_cloud<double>(p, c);
+            }));
     return info;
 }
 
