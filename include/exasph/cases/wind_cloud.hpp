@@ -24,7 +24,7 @@ struct WindCloudParams {
     double u_wind = 1.5;
     double v_wind = 2.7;
     double dt0 = 1e-5;
-    double t_end = 0; // 0: 4 tau_KH of the radius (0.375 for 0.025)
+    double t_end = 0; // 0: 4 tau_KH of the radius (0.3748 for 0.025)
 };
 
 inline constexpr double kWindCloudWidth = 0.25; // the box's y and z extent; x is 4 times it
