@@ -71,7 +71,7 @@ if "$exe" --version | grep -q "HDF5 off"; then
     expect_rejected "-w: this build has no HDF5" -n 10 -s 1 -w 1
     expect_rejected "--restart" -n 10 --restart "$0"
 else
-    expect_rejected "--av-limiter" -n 10 -s 1 -w 1 -f rho,dvx_dx
+    expect_rejected "--av-limiter" -n 10 -s 1 -w 1 -f rho,strain_xx
     # Optional fields exist only in runs that carry them (alpha: --av-switch, phi: gravity).
     expect_rejected "--av-switch" -n 10 -s 1 -w 1 -f rho,alpha
     expect_rejected "self-gravity" --init sedov -n 10 -s 1 -w 1 -f phi

@@ -16,7 +16,7 @@
 namespace exasph {
 
 // Resolves -f names to fields (x, y, z are always written: ParaView needs the geometry). The
-// velocity gradient exists only in runs with --av-limiter (`with_gradient`).
+// strain rate (strain_xx ..) exists only in runs with --av-limiter (`with_gradient`).
 inline std::vector<Field> snapshot_field_list(const std::vector<std::string>& names,
                                               bool with_gradient = false) {
     std::vector<Field> out{Field::x, Field::y, Field::z};

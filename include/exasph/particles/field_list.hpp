@@ -59,17 +59,15 @@ enum class Field : std::uint8_t {
     phi,   // gravitational potential (SPEC 8; 0 without gravity)
     gsoft, // the softening correction's xi (sph/softening_correction_kern.hpp; with gravity)
     stir,  // power per unit mass of the stirring force, v . a_stir (driven turbulence)
-    // Velocity gradient dv_i/dx_j (IAD), only with --av-limiter: the slope of the velocity
-    // reconstruction in the artificial viscosity.
-    gxx,
-    gxy,
-    gxz,
-    gyx,
-    gyy,
-    gyz,
-    gzx,
-    gzy,
-    gzz,
+    // Strain rate S = (G + G^T) / 2 of the IAD velocity gradient G_ij = dv_i/dx_j, only with
+    // --av-limiter: the reconstruction's slope along a pair axis d is d.G.d = d.S.d, so the
+    // symmetric part is all the viscosity needs (6 narrow fields, 24 B/particle, not 9 in T).
+    e11,
+    e12,
+    e13,
+    e22,
+    e23,
+    e33,
     count_ // number of fields (not a field)
 };
 
@@ -148,23 +146,20 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::phi,      "phi",      "energy/mass", kDerived | kSnapshot | kOptional, "gravitational potential"},
     {Field::gsoft,    "gsoft",    "length^5/(mass*time^2)", kDerived | kHaloDensity | kOptional, "softening correction xi"},
     {Field::stir,     "stir_power", "energy/mass/time", kDerived | kOptional, "power per unit mass of the stirring force"},
-    {Field::gxx,      "dvx_dx",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvx/dx"},
-    {Field::gxy,      "dvx_dy",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvx/dy"},
-    {Field::gxz,      "dvx_dz",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvx/dz"},
-    {Field::gyx,      "dvy_dx",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvy/dx"},
-    {Field::gyy,      "dvy_dy",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvy/dy"},
-    {Field::gyz,      "dvy_dz",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvy/dz"},
-    {Field::gzx,      "dvz_dx",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvz/dx"},
-    {Field::gzy,      "dvz_dy",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvz/dy"},
-    {Field::gzz,      "dvz_dz",   "1/time",      kDerived | kHaloGrad | kOptional, "velocity gradient dvz/dz"},
+    {Field::e11,      "strain_xx", "1/time",     kDerived | kHaloGrad | kOptional, "strain rate (dvx/dx)"},
+    {Field::e12,      "strain_xy", "1/time",     kDerived | kHaloGrad | kOptional, "strain rate (dvx/dy + dvy/dx)/2"},
+    {Field::e13,      "strain_xz", "1/time",     kDerived | kHaloGrad | kOptional, "strain rate (dvx/dz + dvz/dx)/2"},
+    {Field::e22,      "strain_yy", "1/time",     kDerived | kHaloGrad | kOptional, "strain rate (dvy/dy)"},
+    {Field::e23,      "strain_yz", "1/time",     kDerived | kHaloGrad | kOptional, "strain rate (dvy/dz + dvz/dy)/2"},
+    {Field::e33,      "strain_zz", "1/time",     kDerived | kHaloGrad | kOptional, "strain rate (dvz/dz)"},
 }};
 // clang-format on
 
-// dv_i/dx_j in row-major order (the layout of VelocityGradient): component c of the gradient is
-// field gxx + c. A function, not a table, so that device code can call it.
-static_assert(int(Field::gzz) - int(Field::gxx) == 8, "the gradient fields are contiguous");
-EXASPH_HD constexpr Field velocity_gradient_field(int c) {
-    return static_cast<Field>(int(Field::gxx) + c);
+// The strain rate's six components S_11, S_12, S_13, S_22, S_23, S_33 (the layout of StrainRate):
+// component c is field e11 + c. A function, not a table, so that device code can call it.
+static_assert(int(Field::e33) - int(Field::e11) == 5, "the strain-rate fields are contiguous");
+EXASPH_HD constexpr Field strain_rate_field(int c) {
+    return static_cast<Field>(int(Field::e11) + c);
 }
 // The artificial stress's matrix M_ij, row-major: component c is field s11 + c.
 static_assert(int(Field::s33) - int(Field::s11) == 8, "the stress matrix fields are contiguous");
@@ -207,6 +202,12 @@ constexpr bool is_narrow(Field f) {
     case Field::c22:
     case Field::c23:
     case Field::c33:
+    case Field::e11:
+    case Field::e12:
+    case Field::e13:
+    case Field::e22:
+    case Field::e23:
+    case Field::e33:
     case Field::nc:
         return true;
     default:

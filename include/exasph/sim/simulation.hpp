@@ -146,7 +146,7 @@ class Simulation {
     // Optional fields, allocated only for the options that use them.
     void enable_fields() {
         ps_.validate();
-        if (cfg_.av_limiter) ps_.enable(kHaloGrad); // the velocity gradient (72 B/particle)
+        if (cfg_.av_limiter) ps_.enable(kHaloGrad); // the strain rate (24 B/particle)
         if (cfg_.av_switch) ps_.enable(Field::alpha), ps_.enable(Field::divv);
         if (cfg_.volume_elements) ps_.enable(Field::xm), ps_.enable(Field::kx);
         ps_.set_narrow_single(!cfg_.double_precision); // --double-precision

@@ -36,7 +36,7 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb,
     const T w0 = k.value(T(0));
     double k_sum = xm[a] * w0; // w(v) sums, divided by h^3 at the end
     double dh_sum = xm[a] * T(3) * w0;
-    std::uint32_t nc = 0;
+    T nc = 0; // counted in T: one type in the simd reductions, so that the loop vectorises
     // Pairs beyond 2 h_a (listed because of h_b) are masked rather than skipped, so that the
     // loop vectorises.
     const PeriodicImage<T> image(box);
@@ -48,7 +48,7 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb,
         T dz = image(z[b] - z[a], 2);
         T r2 = dx * dx + dy * dy + dz * dz;
         T inside = T(r2 < T(4) * ha * ha);
-        nc += std::uint32_t(inside);
+        nc += inside;
         T v = std::sqrt(r2) * inv_h;
         T w = k.value(v);
         T xb = xm[b] * inside;
@@ -59,7 +59,7 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb,
     T kx = static_cast<T>(k_sum) / h3;
     T rho = kx * (p[Field::m][a] / xm[a]); // m/X = 1 exactly for standard SPH
     T omega = T(1) - static_cast<T>(dh_sum) / (T(3) * kx * h3);
-    return {rho, kx, omega, nc};
+    return {rho, kx, omega, std::uint32_t(nc)};
 }
 
 // The density pass of one particle (SPEC 3 and 4): rho, nc (and k with volume elements), then P

@@ -30,6 +30,19 @@ EXASPH_HD VelocityGradient<T> velocity_gradient(const T (&d)[9], const IadResult
     return out;
 }
 
+// The strain rate S = (G + G^T) / 2 as S_11, S_12, S_13, S_22, S_23, S_33 (strain_rate_field):
+// the reconstructed viscosity reads G only through d.G.d = d.S.d.
+template <class T>
+struct StrainRate {
+    T e[6];
+};
+template <class T>
+EXASPH_HD StrainRate<T> strain_rate(const VelocityGradient<T>& v) {
+    const T* g = v.g;
+    return {
+        {g[0], T(0.5) * (g[1] + g[3]), T(0.5) * (g[2] + g[6]), g[4], T(0.5) * (g[5] + g[7]), g[8]}};
+}
+
 // SPEC 5, with the volume V_b = X_b / k_b (= m_b / rho_b for standard SPH):
 // tau_a = sum_b V_b (x_b - x_a) (x) (x_b - x_a) W_ab(h_a), C_a = tau_a^{-1}.
 // With a non-null `grad`, the same pass also yields the velocity gradient (velocity_gradient).
@@ -51,9 +64,9 @@ EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const Pa
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
     T t11 = 0, t12 = 0, t13 = 0, t22 = 0, t23 = 0, t33 = 0;
     T d[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    // Pairs beyond 2 h_a have W = 0 (the table is 0 there): no test needed, so the loop
-    // vectorises (omp simd). The velocity gradient's nine sums, wanted only with --av-limiter,
-    // take a second, plain pass.
+    // Pairs beyond 2 h_a have W = 0 (the table is 0 there): no test needed. The velocity
+    // gradient's nine sums, wanted only with --av-limiter, join the same loop (one kernel
+    // evaluation per pair for both).
     const PeriodicImage<T> image(box);
     auto pair = [&](std::uint32_t b, T& dx, T& dy, T& dz) {
         dx = image(x[b] - x[a], 0);
@@ -62,17 +75,19 @@ EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const Pa
         return xm[b] / T(kx[own_k ? a : b]) *
                k.value(std::sqrt(dx * dx + dy * dy + dz * dz) * inv_h);
     };
+    if (!grad) {
 #pragma omp simd reduction(+ : t11, t12, t13, t22, t23, t33)
-    for (std::uint32_t n = 0; n < nb.count; ++n) {
-        T dx, dy, dz;
-        T vw = pair(nb[n], dx, dy, dz); // V_b W_ab(h_a)
-        add_second_moment(t11, t12, t13, t22, t23, t33, dx, dy, dz, vw);
-    }
-    if (grad) {
+        for (std::uint32_t n = 0; n < nb.count; ++n) {
+            T dx, dy, dz;
+            T vw = pair(nb[n], dx, dy, dz); // V_b W_ab(h_a)
+            add_second_moment(t11, t12, t13, t22, t23, t33, dx, dy, dz, vw);
+        }
+    } else {
         for (std::uint32_t n = 0; n < nb.count; ++n) {
             const std::uint32_t b = nb[n];
             T dx, dy, dz;
             T vw = pair(b, dx, dy, dz);
+            add_second_moment(t11, t12, t13, t22, t23, t33, dx, dy, dz, vw);
             const T dv[3] = {vx[b] - vx[a], vy[b] - vy[a], vz[b] - vz[a]};
             for (int i = 0; i < 3; ++i) {
                 d[3 * i] += dv[i] * dx * vw;
@@ -100,7 +115,7 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const Particl
 }
 
 // The IAD pass of one particle: C_a stored in N (is_narrow: float, or T with --double-precision),
-// `with_gradient` also the velocity gradient (Field::gxx..gzz) for the reconstructed artificial
+// `with_gradient` also the strain rate (Field::e11..e33, in N) for the reconstructed artificial
 // viscosity. Returns i where tau_a is singular, else +infinity (the launcher's minimum names the
 // first such particle).
 template <class T, class N = float>
@@ -123,8 +138,10 @@ struct IadKernel {
             for (int c = 0; c < 9; ++c) p[stress_matrix_field(c)][i] = s.m[c];
             r.singular = r.singular || s.singular;
         }
-        if (with_gradient)
-            for (int c = 0; c < 9; ++c) p[velocity_gradient_field(c)][i] = g.g[c];
+        if (with_gradient) {
+            const StrainRate<T> e = strain_rate(g);
+            for (int c = 0; c < 6; ++c) p.narrow(strain_rate_field(c))[i] = N(e.e[c]);
+        }
         p.narrow(Field::c11)[i] = N(r.c11);
         p.narrow(Field::c12)[i] = N(r.c12);
         p.narrow(Field::c13)[i] = N(r.c13);

@@ -67,29 +67,30 @@ struct Dissipation {
 // the slopes disagree, as at a shock. Pairs closer than eta_crit (about the mean particle
 // spacing in units of h) lose the reconstruction smoothly, keeping the viscosity's barrier
 // against interpenetration. Phi and the midpoint are symmetric in a and b, so Pi_ab stays
-// symmetric and momentum and energy stay conserved.
+// symmetric and momentum and energy stay conserved. Only v~_ab . d enters Pi_ab, and
+// (G d) . d = d.S.d with S the strain rate (G's symmetric part): the six components of S
+// (strain_rate_field) are all the pair reads, and
+//   v~_ab . r_ab = v_ab . r_ab - Phi/2 (q_a + q_b),  r_ab = -d.
 inline constexpr double kReconstructedApproachCap = 2.0;
 
+// d.S.d for the strain rate S = (S_11, S_12, S_13, S_22, S_23, S_33).
 template <class T>
-EXASPH_HD T reconstructed_approach(T vabx, T vaby, T vabz, T dx, T dy, T dz, const T (&ga)[9],
-                                   const T (&gb)[9], T eta, T eta_crit) {
-    T gad[3], gbd[3];
-    for (int i = 0; i < 3; ++i) {
-        gad[i] = ga[3 * i] * dx + ga[3 * i + 1] * dy + ga[3 * i + 2] * dz;
-        gbd[i] = gb[3 * i] * dx + gb[3 * i + 1] * dy + gb[3 * i + 2] * dz;
-    }
-    T qa = dx * gad[0] + dy * gad[1] + dz * gad[2];
-    T qb = dx * gbd[0] + dy * gbd[1] + dz * gbd[2];
+EXASPH_HD EXASPH_INLINE T strain_along(const T (&e)[6], T dx, T dy, T dz) {
+    return dx * (e[0] * dx + T(2) * (e[1] * dy + e[2] * dz)) + dy * (e[3] * dy + T(2) * e[4] * dz) +
+           dz * e[5] * dz;
+}
+
+template <class T>
+EXASPH_HD T reconstructed_approach(T vr, T dx, T dy, T dz, const T (&ea)[6], const T (&eb)[6],
+                                   T eta, T eta_crit) {
+    const T qa = strain_along(ea, dx, dy, dz);
+    const T qb = strain_along(eb, dx, dy, dz);
     T phi = qa * qb > T(0) ? T(4) * qa * qb / ((qa + qb) * (qa + qb)) : T(0);
     if (eta < eta_crit) {
         T e = (eta - eta_crit) / T(0.2);
         phi *= std::exp(-e * e);
     }
-    T hx = T(0.5) * phi * (gad[0] + gbd[0]);
-    T hy = T(0.5) * phi * (gad[1] + gbd[1]);
-    T hz = T(0.5) * phi * (gad[2] + gbd[2]);
-    // v~_ab . r_ab with r_ab = -d
-    return -((vabx + hx) * dx + (vaby + hy) * dy + (vabz + hz) * dz);
+    return vr - T(0.5) * phi * (qa + qb);
 }
 
 // The component of g along the pair axis d, (g . d) d / r^2: a pair force along it is central
@@ -155,9 +156,9 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
     const bool own_stress_matrix = kExtras && diss.stress_matrix;
     T du_ts = 0;
     const T* u = p[Field::u];
-    T ga[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    T ea[6] = {0, 0, 0, 0, 0, 0}; // the strain rate S_a, with the limiter
     if (diss.reconstruct)
-        for (int g = 0; g < 9; ++g) ga[g] = p[velocity_gradient_field(g)][a];
+        for (int e = 0; e < 6; ++e) ea[e] = p.narrow(strain_rate_field(e))[a];
     const PeriodicImage<T> image(box);
 #pragma omp simd reduction(+ : ax, ay, az, du_p, du_av, divv, du_cond, du_ts) \
     reduction(max : vsig_max)
@@ -168,8 +169,11 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
         T dy = image(y[b] - y[a], 1);
         T dz = image(z[b] - z[a], 2);
         T r = std::sqrt(dx * dx + dy * dy + dz * dz);
+        // 1/r once for the pair's divisions by r (0 for r = 0, where every numerator is 0)
+        T inv_r = r > T(0) ? T(1) / r : T(0);
         T hb = h[b], inv_hb = T(1) / hb;
-        T kwa = k.value(r * inv_ha), kwb = k.value(r * inv_hb);
+        T va = r * inv_ha, vb = r * inv_hb;
+        T kwa = k.value(va), kwb = k.value(vb);
         T wa = kwa * inv_ha3;
         T wb = kwb * inv_hb * inv_hb * inv_hb;
         IadProduct<T> ca = iad_times(p, a, dx, dy, dz);
@@ -179,7 +183,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
         T vabx = vx[a] - vx[b], vaby = vy[a] - vy[b], vabz = vz[a] - vz[b];
         // v_ab . r_ab with r_ab = -d
         T vr = -(vabx * dx + vaby * dy + vabz * dz);
-        T w_ab = vr / (r > T(0) ? r : T(1)); // 0 for r = 0, where vr = 0
+        T w_ab = vr * inv_r;
 
         T vsig = T(c[a]) + T(c[b]) - T(3) * w_ab;
         vsig_max = vsig > vsig_max ? vsig : vsig_max;
@@ -189,12 +193,10 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
         if (kExtras && diss.reconstruct && vr < T(0)) {
             // Only pairs that really approach are dissipated: the heating Pi_ab v_ab . A stays
             // positive.
-            T gb[9];
-            for (int g = 0; g < 9; ++g) gb[g] = p[velocity_gradient_field(g)][b];
-            T eta = r / (ha > hb ? ha : hb);
-            T wt =
-                reconstructed_approach(vabx, vaby, vabz, dx, dy, dz, ga, gb, eta, diss.eta_crit) /
-                r;
+            T eb[6];
+            for (int e = 0; e < 6; ++e) eb[e] = p.narrow(strain_rate_field(e))[b];
+            T eta = va < vb ? va : vb; // r / max(h_a, h_b)
+            T wt = reconstructed_approach(vr, dx, dy, dz, ea, eb, eta, diss.eta_crit) * inv_r;
             // The reconstructed approach is at most kReconstructedApproachCap times the pair's
             // own, so Pi_ab goes to 0 continuously as a pair stops approaching (a jump there
             // turned the round-off of the summation order into 1e-7 force differences between
@@ -209,7 +211,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
         T gy = aay * inv_rho_a + aby * inv_rho_b;
         T gz = aaz * inv_rho_a + abz * inv_rho_b;
         if (kExtras && diss.central) { // --torque-free: viscosity along the pair axis
-            const Vec3<T> g = along_axis(gx, gy, gz, dx, dy, dz, r > T(0) ? T(1) / (r * r) : T(0));
+            const Vec3<T> g = along_axis(gx, gy, gz, dx, dy, dz, inv_r * inv_r);
             gx = g.x, gy = g.y, gz = g.z;
         }
         T half_pi = T(0.5) * pi_ab;
@@ -251,12 +253,10 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
             // Artificial conductivity (Price 2008): heat flows from hot to cold along the pair,
             // with signal speed sqrt(|P_a - P_b| / rho_ab) and |grad W| ~ A_bar . d / r, both
             // symmetric in a and b, so sum_a m_a du_a/dt stays zero.
-            T rho_bar = T(0.5) * (rho_a + T(rho[b]));
-            T vu = std::sqrt(std::abs(T(pr[a]) - T(pr[b])) / rho_bar);
-            T fbar = r > T(0)
-                         ? T(0.5) * ((aax + abx) * dx + (aay + aby) * dy + (aaz + abz) * dz) / r
-                         : T(0);
-            du_cond -= mb * alpha_u * vu * (u[a] - u[b]) * fbar / rho_bar;
+            T inv_rho_bar = T(2) / (rho_a + T(rho[b]));
+            T vu = std::sqrt(std::abs(T(pr[a]) - T(pr[b])) * inv_rho_bar);
+            T fbar = T(0.5) * ((aax + abx) * dx + (aay + aby) * dy + (aaz + abz) * dz) * inv_r;
+            du_cond -= mb * alpha_u * vu * (u[a] - u[b]) * fbar * inv_rho_bar;
         }
     }
     return {ax, ay, az, pa * du_p + ra * du_ts + T(0.25) * du_av + du_cond, vsig_max, divv};
