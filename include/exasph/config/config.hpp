@@ -41,7 +41,7 @@ struct Config {
     int tensile_exponent = 4;     // n of the stress's (W(r)/W(dp))^n
     double tensile_stress_positive = 0.0; // the artificial stress's eps for positive pressures
     bool torque_free = false;             // pair forces without net torque (angular momentum)
-    bool double_precision = false;        // rho, P, c, P/(Om k^2), C, nc in double, not float
+    bool double_precision = false;        // rho, P, c, P/(Om k^2), C, S, nc in double, not float
     double G = -1.0;            // gravitational constant (--G); < 0: the case's (0: no gravity)
     double theta = 0.5;         // Barnes-Hut opening angle (SPEC 8)
     double accel_eps = 0.2;     // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)

@@ -138,9 +138,11 @@ inline const std::array kParameters{
           "B/particle)", "",
           OnRestart::kept, &Config::torque_free},
     Param{"--double-precision", "double_precision", "Store the derived fields (rho, P, c, "
-          "P/(Omega k^2), the IAD matrix, neighbour counts) in double instead of single "
-          "precision (+44 B/particle): their rounding then seeds no asymmetry larger than "
-          "double round-off, as the square patch's z-symmetry needs (on in the wc scheme)", "",
+          "P/(Omega k^2), the IAD matrix, neighbour counts; the strain rate with --av-limiter) "
+          "in double instead of single precision (+44 B/particle, +24 with the limiter): "
+          "their rounding then seeds no asymmetry larger than double round-off, as the "
+          "square patch's z-symmetry needs (on in the wc scheme)",
+          "",
           OnRestart::kept, &Config::double_precision},
     Param{"--G", "G", "Gravitational constant: self-gravity on the tree (SPEC 8) for any case in "
           "an open box; 0 turns it off (default: the case's, 1 for evrard, else off)",
