@@ -36,7 +36,7 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb,
     const T w0 = k.value(T(0));
     double k_sum = xm[a] * w0; // w(v) sums, divided by h^3 at the end
     double dh_sum = xm[a] * T(3) * w0;
-    T nc = 0; // counted in T: one type in the simd reductions, so that the loop vectorises
+    T nc = 0; // counted in T: one type in the simd reductions (GCC rejects mixed ones)
     // Pairs beyond 2 h_a (listed because of h_b) are masked rather than skipped, so that the
     // loop vectorises.
     const PeriodicImage<T> image(box);
