@@ -108,6 +108,8 @@ class RunDriver {
                 continue;
             }
             check_step();
+            if (const std::string notice = sim_->take_sdc_notice(); root() && !notice.empty())
+                out_ << "sdc watchdog: " << notice << "\n";
             if (root()) {
                 const double mean = (wall_seconds() - wall0_) / double(sim_->step_count() - step0_);
                 print_step(out_, *sim_, wall_seconds() - w0, mean, t_end_);

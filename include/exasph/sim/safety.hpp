@@ -11,7 +11,7 @@
 #include "exasph/sim/fault.hpp"
 #include "exasph/sim/state_guard.hpp"
 #include "exasph/sim/state_store.hpp"
-#include "exasph/sim/watchdog.hpp"
+#include "exasph/sim/energy_watchdog.hpp"
 
 namespace exasph {
 
@@ -75,7 +75,7 @@ class SafetyNet {
     bool conserved_after(const ParticleSet<T>& ps, std::size_t n, const Diagnostics& before,
                          const Diagnostics& now, double mass0, bool check_momentum) {
         if (!on()) return true;
-        const std::string why = conservation_violation(before, now, mass0, check_momentum);
+        const std::string why = watchdog_.check(before, now, mass0, check_momentum);
         if (!why.empty()) {
             if (rank_ == 0) detail_ = "watchdog: " + why;
             return false;
@@ -112,6 +112,8 @@ class SafetyNet {
     }
 
     std::int64_t recoveries() const { return recoveries_; }
+    // The watchdog's message when it widened its energy budget, once (EnergyWatchdog).
+    std::string take_notice() { return watchdog_.take_notice(); }
     // This rank's description of the last detection ("" if another rank detected it).
     const std::string& detail() const { return detail_; }
     const std::string& summary() const { return summary_; }
@@ -122,6 +124,7 @@ class SafetyNet {
     std::int64_t every_;
     int rank_;
     StateGuard<T> guard_;
+    EnergyWatchdog watchdog_;
     StateStore<T> point_state_; // in memory, or on disk (--sdc-rollback-store disk)
     RunPoint<T> point_;
     bool have_point_ = false;

@@ -99,6 +99,7 @@ class Simulation {
     bool recovered() const { return recovered_; }
     const std::string& sdc_detail() const { return safety_.detail(); }
     const std::string& sdc_summary() const { return safety_.summary(); }
+    std::string take_sdc_notice() { return safety_.take_notice(); } // budget widened: once
     std::int64_t sdc_detection_step() const { return safety_.detection_step(); }
 
     // Raises a control flag on this rank; after the next step every rank sees it (flag()).

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "exasph/glass/glass_cache.hpp"
 
@@ -59,6 +60,7 @@ TEST(GlassCache, FileRoundTripsBitwiseAndRejectsAnythingElse) {
 }
 
 TEST(GlassCache, SecondRunReadsTheBlockTheFirstMadeAndADamagedFileIsMadeAgain) {
+    omp_set_num_threads(1); // beside other tests under ctest -j2 (busy-waiting threads)
     const auto dir = fresh_dir("block");
     ::setenv("EXASPH_GLASS_DIR", dir.c_str(), 1);
     const auto made = glass_block(8, 100, MPI_COMM_WORLD, nullptr);

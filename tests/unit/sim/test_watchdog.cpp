@@ -3,7 +3,7 @@
 // before it: Sedov -n 40 --t-end 0.05 used to roll back its last step forever).
 #include <gtest/gtest.h>
 
-#include "exasph/sim/watchdog.hpp"
+#include "exasph/sim/energy_watchdog.hpp"
 
 using namespace exasph;
 
@@ -37,4 +37,39 @@ TEST(Watchdog, StirringWorkIsNotAViolation) {
     EXPECT_NE(conservation_violation(prev, now, 1.0, false), "");
     now.e_stir = 0.1; // the stirring did that work
     EXPECT_EQ(conservation_violation(prev, now, 1.0, false), "");
+}
+
+// Issue 21: an energy change that comes back identical when its step is replayed after the
+// rollback is the run's own error: accepted, and the budget widened to twice it; anything else
+// is still a violation.
+TEST(Watchdog, AChangeThatComesBackIdenticalOnReplayWidensTheBudget) {
+    Diagnostics prev = row(6.5e-4, 0.99994), now = row(6.5e-4, 0.99994 - 2e-2);
+    now.step = 7;
+    EnergyWatchdog w;
+    EXPECT_NE(w.check(prev, now, 1.0, true), ""); // roll back
+    EXPECT_EQ(w.take_notice(), "");
+    Diagnostics other = now;
+    other.etot -= 1e-9; // the replay differs: a flip, not the integrator
+    EXPECT_NE(w.check(prev, other, 1.0, true), "");
+    EXPECT_NE(w.check(prev, now, 1.0, true), ""); // differs from the last replay: roll back
+    EXPECT_EQ(w.check(prev, now, 1.0, true), ""); // identical: accepted
+    EXPECT_NEAR(w.scale(), 2 * 2e-2 / energy_budget(prev, now), 1e-9 * w.scale());
+    EXPECT_NE(w.take_notice().find("step 7 (-2.000e-02) came back identical"), std::string::npos);
+    EXPECT_EQ(w.take_notice(), ""); // said once
+    Diagnostics later = now;
+    later.step = 8;
+    later.etot = now.etot - 1.5e-2; // within the widened budget
+    EXPECT_EQ(w.check(now, later, 1.0, true), "");
+    later.etot = now.etot - 5e-2; // beyond it
+    EXPECT_NE(w.check(now, later, 1.0, true), "");
+}
+
+TEST(Watchdog, OnlyTheEnergyIsCalibrated) {
+    Diagnostics prev = row(6.5e-4, 1.0), now = row(6.5e-4, 1.0);
+    now.step = 3;
+    now.mass = 1 + 1e-9; // mass is never the integrator's
+    EnergyWatchdog w;
+    EXPECT_NE(w.check(prev, now, 1.0, true), "");
+    EXPECT_NE(w.check(prev, now, 1.0, true), "");
+    EXPECT_EQ(w.scale(), 1.0);
 }

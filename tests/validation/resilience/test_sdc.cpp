@@ -117,6 +117,25 @@ TEST(Sdc, CleanRunsRaiseNoAlarm) {
     }
 }
 
+// Issue 21: Evrard at ~1,000 particles moves E_tot by more than the default budget in its
+// second step (7.0e-4 at -n 12, 1.3e-3 at -n 10 on a lattice) and used to roll back 100 times
+// and die. The replayed step gives the same change, so the watchdog takes it as the run's own
+// error: one rollback, a widened budget, and the run goes on.
+TEST(Sdc, SmallEvrardRunsAreNotKilledByTheirOwnEnergyError) {
+    for (int side : {10, 12}) {
+        Config cfg;
+        cfg.init = "evrard";
+        cfg.side = side;
+        cfg.lattice = true;
+        Outcome o = run(cfg, 60);
+        EXPECT_FALSE(o.crashed) << "evrard -n " << side << ": " << o.error;
+        EXPECT_EQ(o.recoveries, 1) << "evrard -n " << side << ": " << o.summary;
+        EXPECT_EQ(o.detected_at, 2);
+        std::printf("evrard -n %d, 60 steps: %lld rollback (%s)\n", side,
+                    (long long)o.recoveries, o.summary.c_str());
+    }
+}
+
 TEST(Sdc, InjectedBitFlipsAreDetectedAndRolledBack) {
     const int steps = 6, injections = 300;
     Config clean_cfg = sedov_lattice();
