@@ -8,10 +8,10 @@
 #include "exasph/config/config.hpp"
 #include "exasph/io/restart_state.hpp"
 #include "exasph/sim/diagnostics.hpp"
+#include "exasph/sim/energy_watchdog.hpp"
 #include "exasph/sim/fault.hpp"
 #include "exasph/sim/state_guard.hpp"
 #include "exasph/sim/state_store.hpp"
-#include "exasph/sim/energy_watchdog.hpp"
 
 namespace exasph {
 

@@ -15,8 +15,8 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("exasph_glass_cache_" + name + "_" +
-                                                      std::to_string(::getpid()));
+    const fs::path dir = fs::temp_directory_path() /
+                         ("exasph_glass_cache_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
@@ -77,7 +77,7 @@ TEST(GlassCache, SecondRunReadsTheBlockTheFirstMadeAndADamagedFileIsMadeAgain) {
 
     fs::resize_file(path, fs::file_size(path) - 1);
     EXPECT_EQ(glass_block(8, 100, MPI_COMM_WORLD, nullptr), made); // made again, same seed
-    EXPECT_TRUE(read_glass_cache(path, 8, 100).has_value());        // and the file replaced
+    EXPECT_TRUE(read_glass_cache(path, 8, 100).has_value());       // and the file replaced
     ::unsetenv("EXASPH_GLASS_DIR");
     fs::remove_all(dir);
 }

@@ -131,8 +131,8 @@ TEST(Sdc, SmallEvrardRunsAreNotKilledByTheirOwnEnergyError) {
         EXPECT_FALSE(o.crashed) << "evrard -n " << side << ": " << o.error;
         EXPECT_EQ(o.recoveries, 1) << "evrard -n " << side << ": " << o.summary;
         EXPECT_EQ(o.detected_at, 2);
-        std::printf("evrard -n %d, 60 steps: %lld rollback (%s)\n", side,
-                    (long long)o.recoveries, o.summary.c_str());
+        std::printf("evrard -n %d, 60 steps: %lld rollback (%s)\n", side, (long long)o.recoveries,
+                    o.summary.c_str());
     }
 }
 
