@@ -1,5 +1,6 @@
 // exasph command line: the parameter table (config/parameters.hpp) -> Config -> run().
 #include <algorithm>
+#include <cstdlib>
 #include <iostream>
 #include <string>
 
@@ -9,6 +10,7 @@
 #include "cli_parameters.hpp"
 #include "exasph/build_info.hpp"
 #include "exasph/cases/registry.hpp"
+#include "exasph/io/h5_file.hpp"
 #include "exasph/io/initial_conditions_file.hpp"
 #include "exasph/run/run.hpp"
 #include "exasph/util/memory.hpp"
@@ -43,7 +45,7 @@ std::string cases_help() {
 void add_options(CLI::App& app, exasph::Config& cfg) {
     exasph::cli::add_parameters(app, cfg);
     app.get_option("--init")->check(init_check());
-    app.get_option("--restart")->check(CLI::ExistingFile);
+    app.get_option("--restart")->check(CLI::ExistingPath);
     std::string fields;
     for (const auto& info : exasph::kFieldTable)
         if (info.roles & exasph::kSnapshot)
@@ -64,6 +66,10 @@ int finish_with_error(const std::string& msg, int code, bool all_ranks) {
     std::cout.flush();
     if (nranks == 1 || all_ranks) {
         if (rank == 0) std::cerr << "exasph: error: " << msg << "\n";
+        if (exasph::h5::write_failed()) { // HDF5 would crash closing that file in MPI_Finalize
+            std::cerr.flush();
+            std::_Exit(code);
+        }
         MPI_Finalize();
         return code;
     }

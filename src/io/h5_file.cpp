@@ -41,6 +41,15 @@ std::string where(const Group& g, const std::string& name) {
     return g.name() == "/" ? "/" + name : g.name() + "/" + name;
 }
 
+bool g_write_failed = false;
+
+// A write into g's file failed: the file is not closed again (File::mark_failed).
+[[noreturn]] void fail_write(const Group& g, const std::string& what) {
+    g.file().mark_failed();
+    g_write_failed = true;
+    fail(g.file().path(), what, 3);
+}
+
 template <class V>
 void write_1d(const Group& g, const std::string& name, hid_t memtype, hid_t filetype, const V* data,
               std::uint64_t count, std::uint64_t offset, std::uint64_t n_global) {
@@ -50,7 +59,7 @@ void write_1d(const Group& g, const std::string& name, hid_t memtype, hid_t file
         H5Dcreate2(g.id(), name.c_str(), filetype, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (dset < 0) {
         H5Sclose(fspace);
-        fail(g.file().path(), "cannot create dataset " + where(g, name), 3);
+        fail_write(g, "cannot create dataset " + where(g, name));
     }
     hsize_t start[1] = {offset}, cnt[1] = {count};
     H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
@@ -61,7 +70,7 @@ void write_1d(const Group& g, const std::string& name, hid_t memtype, hid_t file
     H5Sclose(mspace);
     H5Sclose(fspace);
     H5Dclose(dset);
-    if (st < 0) fail(g.file().path(), "cannot write dataset " + where(g, name), 3);
+    if (st < 0) fail_write(g, "cannot write dataset " + where(g, name));
 }
 
 template <class V>
@@ -95,7 +104,7 @@ void write_attr(const Group& g, const std::string& name, hid_t type, const V* v,
     herr_t st = attr < 0 ? -1 : H5Awrite(attr, type, v);
     if (attr >= 0) H5Aclose(attr);
     H5Sclose(space);
-    if (st < 0) fail(g.file().path(), "cannot write attribute " + where(g, name), 3);
+    if (st < 0) fail_write(g, "cannot write attribute " + where(g, name));
 }
 
 } // namespace
@@ -125,14 +134,15 @@ File File::open_read(const std::string& path, MPI_Comm comm) {
     return File(id, path, comm);
 }
 
-File::File(File&& o) noexcept : id_(o.id_), path_(std::move(o.path_)), comm_(o.comm_) {
+File::File(File&& o) noexcept
+    : id_(o.id_), path_(std::move(o.path_)), comm_(o.comm_), failed_(o.failed_) {
     o.id_ = -1;
 }
 File::~File() {
     close();
 }
 void File::close() {
-    if (id_ >= 0) H5Fclose(id_);
+    if (id_ >= 0 && !failed_) H5Fclose(id_);
     id_ = -1;
 }
 
@@ -151,6 +161,10 @@ Group::Group(Group&& o) noexcept : file_(o.file_), id_(o.id_), name_(std::move(o
 }
 Group::~Group() {
     if (id_ >= 0) H5Gclose(id_);
+}
+
+bool write_failed() {
+    return g_write_failed;
 }
 
 bool has_link(const Group& g, const std::string& name) {
@@ -245,7 +259,7 @@ void write_attribute(const Group& g, const std::string& name, const std::string&
     if (attr >= 0) H5Aclose(attr);
     H5Sclose(space);
     H5Tclose(type);
-    if (st < 0) fail(g.file().path(), "cannot write attribute " + where(g, name), 3);
+    if (st < 0) fail_write(g, "cannot write attribute " + where(g, name));
 }
 
 std::vector<double> read_attribute_doubles(const Group& g, const std::string& name) {

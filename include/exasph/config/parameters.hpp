@@ -180,8 +180,9 @@ inline const std::array kParameters{
           "GPU per rank, rank modulo the visible devices; gravity stays on the CPU) or auto "
           "(cuda where this build has it and a device is visible, else cpu)", "",
           OnRestart::given, &Config::backend},
-    Param{"--restart", "restart", "Continue the run saved in this checkpoint (any rank count); "
-          "the physics parameters come from the checkpoint", "", OnRestart::given,
+    Param{"--restart", "restart", "Continue the run saved in this checkpoint, or in the newest "
+          "checkpoint of this directory that reads and verifies (any rank count); the physics "
+          "parameters come from the checkpoint", "", OnRestart::given,
           &Config::restart_file, {}, false},
     // Output
     Param{"--out", "out", "Output directory (diagnostics.csv, snapshots, checkpoints)", "",

@@ -1,7 +1,10 @@
 #pragma once
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -52,5 +55,30 @@ class CsvTable {
     std::vector<CsvColumn> columns_;
     std::string name_;
 };
+
+// Before a restart appends to the table: keeps the header and the rows of steps up to `step`
+// (the checkpoint's), dropping the rows a killed run wrote after it and a last row the kill cut
+// short, so that the restarted run's rows follow on as an uninterrupted run's would. Rewritten
+// under a temporary name; an absent file is left absent.
+inline void keep_rows_through(const std::filesystem::path& path, std::int64_t step) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return;
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string kept;
+    for (std::size_t a = 0, b; (b = text.find('\n', a)) != std::string::npos; a = b + 1) {
+        const std::string line = text.substr(a, b - a + 1);
+        if (a == 0 || std::strtoll(line.c_str(), nullptr, 10) <= step) kept += line;
+    }
+    if (kept.size() == text.size()) return;
+    const auto tmp = path.string() + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out << kept;
+        if (!out.flush()) throw Error("cannot rewrite " + path.string(), 3);
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) throw Error("cannot rewrite " + path.string() + ": " + ec.message(), 3);
+}
 
 } // namespace exasph

@@ -24,12 +24,18 @@ class File {
     Id id() const { return id_; }
     const std::string& path() const { return path_; }
     MPI_Comm comm() const { return comm_; }
+    // After a failed write (a full disk) close() does not close the file: HDF5 1.10 cannot
+    // close a file whose final flush fails (H5Fclose fails half-way, and any later close of
+    // it, HDF5's own at MPI_Finalize included, dereferences freed memory). See
+    // write_failed().
+    void mark_failed() const { failed_ = true; }
 
   private:
     File(Id id, std::string path, MPI_Comm comm) : id_(id), path_(std::move(path)), comm_(comm) {}
     Id id_;
     std::string path_;
     MPI_Comm comm_;
+    mutable bool failed_ = false;
 };
 
 // A group of the file ("/" is the root), opened or created.
@@ -48,6 +54,10 @@ class Group {
     Id id_;
     std::string name_;
 };
+
+// Whether a write into some file failed in this process: the process must then end without
+// MPI_Finalize, where HDF5 would crash closing that file (File::mark_failed).
+bool write_failed();
 
 bool has_link(const Group& g, const std::string& name);
 bool has_attribute(const Group& g, const std::string& name);

@@ -28,7 +28,9 @@ namespace exasph {
 
 // Opens diagnostics.csv on rank 0 (appending when a restart continues in the same directory);
 // every rank learns whether that worked (start-up broadcast).
-inline std::unique_ptr<CsvTable> open_diagnostics(const Config& cfg, bool root, bool append) {
+// A restart (append) continues the table after step `restart_step` (keep_rows_through).
+inline std::unique_ptr<CsvTable> open_diagnostics(const Config& cfg, bool root, bool append,
+                                                  std::int64_t restart_step) {
     std::unique_ptr<CsvTable> csv;
     std::string err;
     if (root) {
@@ -39,6 +41,7 @@ inline std::unique_ptr<CsvTable> open_diagnostics(const Config& cfg, bool root, 
             err = "--out: cannot create directory '" + cfg.out_dir + "': " + ec.message();
         else {
             try {
+                if (append) keep_rows_through(dir / "diagnostics.csv", restart_step);
                 csv = std::make_unique<CsvTable>(dir / "diagnostics.csv", append,
                                                  diagnostics_columns());
             } catch (const Error& e) {
@@ -84,7 +87,7 @@ class RunDriver {
             throw input_error("no end: give -s STEPS or --t-end T (the initial conditions set "
                               "none)",
                               true);
-        csv_ = open_diagnostics(cfg_, root(), !cfg_.restart_file.empty());
+        csv_ = open_diagnostics(cfg_, root(), !cfg_.restart_file.empty(), sim_->step_count());
         if (root()) print_header(out_, cfg_, *sim_, nranks_, t_end_, backend);
         if (t_end_ > 0) sim_->set_end_time(t_end_);
         schedule_ = std::make_unique<OutputSchedule>(cfg_, sim_->time(), auto_checkpoint_mtbf());
@@ -95,6 +98,9 @@ class RunDriver {
         detail::g_stop_signal = 0;
         std::signal(SIGINT, detail::on_stop_signal);
         std::signal(SIGTERM, detail::on_stop_signal);
+        // A file-size limit (ulimit -f) reached while writing: the write fails and the run ends
+        // with exit 3 like on a full disk, instead of being killed by SIGXFSZ.
+        std::signal(SIGXFSZ, SIG_IGN);
         wall0_ = wall_seconds();
         step0_ = sim_->step_count();
         while (!done()) {

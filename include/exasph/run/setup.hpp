@@ -11,6 +11,7 @@
 #include "exasph/glass/glass_cache.hpp"
 #include "exasph/io/checkpoint.hpp"
 #include "exasph/io/initial_conditions_file.hpp"
+#include "exasph/io/restart_source.hpp"
 #include "exasph/sim/simulation.hpp"
 
 namespace exasph {
@@ -76,7 +77,7 @@ struct RunStart {
 template <class L>
 RunStart<L> start_run(Config& cfg, MPI_Comm comm, std::ostream* log) {
     if (!cfg.restart_file.empty()) {
-        auto cp = read_checkpoint<double>(cfg.restart_file, cfg, comm);
+        auto cp = read_restart<double>(cfg, comm, log);
         RunStart<L> r{nullptr, cp.ic.units, cp.ic.t_end};
         r.sim = std::make_unique<Simulation<double, L>>(cfg, std::move(cp.ic), cp.rs, comm);
         return r;
