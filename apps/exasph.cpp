@@ -1,5 +1,6 @@
 // exasph command line: the parameter table (config/parameters.hpp) -> Config -> run().
 #include <algorithm>
+#include <csignal>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -103,6 +104,9 @@ int parse(CLI::App& app, int argc, char** argv, int rank) {
 int main(int argc, char** argv) {
     exasph::map_large_blocks();
     int provided = 0;
+    // A file-size limit (ulimit -f) reached while writing: the write fails and the run ends
+    // with exit 3 as on a full disk, instead of being killed by SIGXFSZ.
+    std::signal(SIGXFSZ, SIG_IGN);
     MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -98,9 +98,6 @@ class RunDriver {
         detail::g_stop_signal = 0;
         std::signal(SIGINT, detail::on_stop_signal);
         std::signal(SIGTERM, detail::on_stop_signal);
-        // A file-size limit (ulimit -f) reached while writing: the write fails and the run ends
-        // with exit 3 like on a full disk, instead of being killed by SIGXFSZ.
-        std::signal(SIGXFSZ, SIG_IGN);
         wall0_ = wall_seconds();
         step0_ = sim_->step_count();
         while (!done()) {
