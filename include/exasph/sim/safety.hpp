@@ -49,6 +49,7 @@ class SafetyNet {
     // then checks the state at rest. Returns whether this rank found it corrupted.
     bool corrupted_before(ParticleSet<T>& ps, std::size_t n, const Box<T>& box, std::int64_t step,
                           double dt_m1, bool u_positive) {
+        watchdog_fired_ = false;
         if (fault_.step == step && !fault_done_) {
             inject_fault(ps, n, fault_); // on the rank that owns the particle
             fault_done_ = true;
@@ -78,6 +79,7 @@ class SafetyNet {
         const std::string why = watchdog_.check(before, now, mass0, check_momentum);
         if (!why.empty()) {
             if (rank_ == 0) detail_ = "watchdog: " + why;
+            watchdog_fired_ = true; // on every rank: the diagnostics are global
             return false;
         }
         seal(ps, n);
@@ -104,6 +106,18 @@ class SafetyNet {
                             (policy_ == SdcPolicy::abort ? "aborting (--on-sdc abort)"
                                                          : "no verified state to roll back to"),
                         1, true);
+        // The state check finding a bad state again at the same step after the rollback: the
+        // replay reproduced it, so the run itself made that state (e.g. u < 0 from a scheme
+        // that fails at this resolution), not a flip, and more rollbacks cannot mend it.
+        const bool by_state_check = !watchdog_fired_;
+        if (by_state_check && step == state_check_step_)
+            throw Error(where + " found the same problem again after replaying the step (" +
+                            detail +
+                            "): the run itself produced this state, not corruption; "
+                            "stopping (a larger -n, a smaller --courant or another "
+                            "--scheme may avoid it)",
+                        1, true);
+        state_check_step_ = by_state_check ? step : -1;
         summary_ = "corruption detected by " + where + " (" + detail + "): rolled back to step " +
                    std::to_string(point_.rs.step);
         point_state_.restore(ps);
@@ -129,7 +143,8 @@ class SafetyNet {
     RunPoint<T> point_;
     bool have_point_ = false;
     FaultSpec fault_;
-    bool fault_done_ = false, press_ok_ = false;
+    bool fault_done_ = false, press_ok_ = false, watchdog_fired_ = false;
+    std::int64_t state_check_step_ = -1; // the step the state check last rolled back
     std::int64_t recoveries_ = 0, detection_step_ = -1;
     std::string detail_, summary_;
 };

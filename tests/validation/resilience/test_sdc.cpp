@@ -15,6 +15,7 @@
 #include "exasph/util/mpi.hpp"
 #include <gtest/gtest.h>
 
+#include "exasph/config/scheme.hpp"
 #include "exasph/run/setup.hpp"
 #include "exasph/sim/simulation.hpp"
 
@@ -134,6 +135,25 @@ TEST(Sdc, SmallEvrardRunsAreNotKilledByTheirOwnEnergyError) {
         std::printf("evrard -n %d, 60 steps: %lld rollback (%s)\n", side, (long long)o.recoveries,
                     o.summary.c_str());
     }
+}
+
+// Issue 21: the pe scheme makes u < 0 in Noh at -n 8 (lattice) before step 108. The state check
+// used to take that for corruption, roll back 100 times and end with "no verified state"; the
+// replay reproduces it, so the run now stops after one rollback and says what happened.
+TEST(Sdc, AStateTheRunItselfProducesStopsTheRunAfterOneReplay) {
+    Config cfg;
+    cfg.init = "noh";
+    cfg.side = 8;
+    cfg.lattice = true;
+    apply_scheme(cfg, Scheme::pe);
+    Outcome o = run(cfg, 200);
+    ASSERT_TRUE(o.crashed);
+    EXPECT_NE(o.error.find("the state check before step 108 found the same problem again"),
+              std::string::npos)
+        << o.error;
+    EXPECT_NE(o.error.find("u is negative): the run itself produced this state"),
+              std::string::npos)
+        << o.error;
 }
 
 TEST(Sdc, InjectedBitFlipsAreDetectedAndRolledBack) {
