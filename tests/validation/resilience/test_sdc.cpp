@@ -151,8 +151,7 @@ TEST(Sdc, AStateTheRunItselfProducesStopsTheRunAfterOneReplay) {
     EXPECT_NE(o.error.find("the state check before step 108 found the same problem again"),
               std::string::npos)
         << o.error;
-    EXPECT_NE(o.error.find("u is negative): the run itself produced this state"),
-              std::string::npos)
+    EXPECT_NE(o.error.find("u is negative): the run itself produced this state"), std::string::npos)
         << o.error;
 }
 
