@@ -368,18 +368,19 @@ def test_sdc_mpi(r):
           "abort mode exits 1")
 
 
-def main():
+def run_one(tests, prefix):
+    """The command line of a test script: runs tests[TEST] with a Runner in a scratch folder."""
     ap = argparse.ArgumentParser()
-    ap.add_argument("test", choices=["restart", "sigkill", "sigterm", "snapshot", "bad_input",
-                                     "corrupt", "auto_interval", "sdc_mpi"])
+    ap.add_argument("test", choices=sorted(tests))
     ap.add_argument("--exe", required=True)
     ap.add_argument("--mpirun", required=True)
     args = ap.parse_args()
-    with tempfile.TemporaryDirectory(prefix="exasph_io_") as work:
-        globals()["test_" + args.test](Runner(args.exe, args.mpirun, work))
+    with tempfile.TemporaryDirectory(prefix=prefix) as work:
+        tests[args.test](Runner(args.exe, args.mpirun, work))
     print(f"{args.test}: passed")
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_one({name[5:]: f for name, f in globals().items() if name.startswith("test_")},
+                     "exasph_io_"))

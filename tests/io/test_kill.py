@@ -17,18 +17,16 @@ with TEST one of:
                  of the same steps on 2 ranks).
 Set EXASPH_KILL_SEED to repeat a kill_anywhere draw. Exits non-zero on failure.
 """
-import argparse
 import csv
 import os
 import random
 import signal
 import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
-from test_io import RUN, Runner, compare, wait_for
+from test_io import RUN, compare, run_one, wait_for
 
 STEPS = 24
 OUTPUTS = ["--checkpoint-every", 2, "-w", 1]
@@ -138,17 +136,6 @@ def test_killed_rank(r):
     compare(ref / f"checkpoint_{end:06d}.h5", out / f"checkpoint_{end:06d}.h5", 1e-10)
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("test", choices=["kill_anywhere", "full_disk", "killed_rank"])
-    ap.add_argument("--exe", required=True)
-    ap.add_argument("--mpirun", required=True)
-    args = ap.parse_args()
-    with tempfile.TemporaryDirectory(prefix="exasph_kill_") as work:
-        globals()["test_" + args.test](Runner(args.exe, args.mpirun, work))
-    print(f"{args.test}: passed")
-    return 0
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_one({"kill_anywhere": test_kill_anywhere, "full_disk": test_full_disk,
+                      "killed_rank": test_killed_rank}, "exasph_kill_"))
