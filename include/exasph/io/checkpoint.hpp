@@ -72,17 +72,24 @@ inline void checkpoint_test_stall(std::int64_t step) {
     if (s && std::atoll(s) == step) std::this_thread::sleep_for(std::chrono::seconds(60));
 }
 
-// Keeps the newest `keep` checkpoints of the directory, deleting older ones (rank 0).
-inline void prune_checkpoints(const std::string& dir, std::size_t keep) {
-    std::vector<std::filesystem::path> found;
+// The checkpoints of a directory, newest first (their names carry the step, zero-padded).
+inline std::vector<std::string> checkpoints_newest_first(const std::string& dir) {
+    std::vector<std::string> found;
     std::error_code ec;
     for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
         const auto name = e.path().filename().string();
         if (name.rfind("checkpoint_", 0) == 0 && e.path().extension() == ".h5")
-            found.push_back(e.path());
+            found.push_back(e.path().string());
     }
-    std::sort(found.begin(), found.end());
-    for (std::size_t i = 0; i + keep < found.size(); ++i) std::filesystem::remove(found[i], ec);
+    std::sort(found.rbegin(), found.rend());
+    return found;
+}
+
+// Keeps the newest `keep` checkpoints of the directory, deleting older ones (rank 0).
+inline void prune_checkpoints(const std::string& dir, std::size_t keep) {
+    const auto found = checkpoints_newest_first(dir);
+    std::error_code ec;
+    for (std::size_t i = keep; i < found.size(); ++i) std::filesystem::remove(found[i], ec);
 }
 
 // Everything needed to continue exactly: all state fields and ids of the owned particles, the

@@ -11,19 +11,6 @@
 
 namespace exasph {
 
-// The checkpoints of a directory, newest first (their names carry the step, zero-padded).
-inline std::vector<std::string> checkpoints_newest_first(const std::string& dir) {
-    std::vector<std::string> found;
-    std::error_code ec;
-    for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
-        const auto name = e.path().filename().string();
-        if (name.rfind("checkpoint_", 0) == 0 && e.path().extension() == ".h5")
-            found.push_back(e.path().string());
-    }
-    std::sort(found.rbegin(), found.rend());
-    return found;
-}
-
 // Rank 0's list, on every rank (a shared file system may show a directory late on some nodes).
 inline std::vector<std::string> broadcast_names(std::vector<std::string> names, MPI_Comm comm) {
     std::string joined;
