@@ -8,55 +8,13 @@
 #include "exasph/util/mpi.hpp"
 #include <CLI/CLI.hpp>
 
-#include "cli_parameters.hpp"
-#include "exasph/build_info.hpp"
-#include "exasph/cases/registry.hpp"
+#include "cli_app.hpp"
 #include "exasph/io/h5_file.hpp"
-#include "exasph/io/initial_conditions_file.hpp"
 #include "exasph/run/run.hpp"
 #include "exasph/util/memory.hpp"
 #include "subcommands.hpp"
 
 namespace {
-
-// --init: a case of the registry or something that names an HDF5 file.
-CLI::Validator init_check() {
-    return CLI::Validator(
-        [](std::string& v) -> std::string {
-            if (exasph::find_case(v) || exasph::names_a_file(v)) return {};
-            return "unknown case '" + v + "' (known: " + exasph::case_names() + ", or a file *.h5)";
-        },
-        "CASE|FILE.h5");
-}
-
-// The cases and their --param keys, for the end of --help (from the case registry).
-std::string cases_help() {
-    std::string s = "Test cases (--init NAME; --param KEY=VALUE sets a case parameter):\n";
-    for (const exasph::CaseInfo* c : exasph::case_registry()) {
-        s += "  " + c->name + ": " + c->summary + " (" +
-             (c->from_points ? "glass or --lattice, " : "") + "scheme " +
-             std::string(exasph::choice_name(c->scheme)) + ")\n";
-        for (const auto& p : c->params)
-            s += "      " + p.key + " (" + exasph::format_number(p.default_value) + "): " + p.help +
-                 "\n";
-    }
-    return s;
-}
-
-void add_options(CLI::App& app, exasph::Config& cfg) {
-    exasph::cli::add_parameters(app, cfg);
-    app.get_option("--init")->check(init_check());
-    app.get_option("--restart")->check(CLI::ExistingPath);
-    std::string fields;
-    for (const auto& info : exasph::kFieldTable)
-        if (info.roles & exasph::kSnapshot)
-            fields += (fields.empty() ? "" : ",") + std::string(info.name);
-    auto* f = app.get_option("--fields");
-    f->description(f->get_description() + " (all: " + fields + ")");
-    app.footer(cases_help());
-    app.set_version_flag("--version", std::string("exasph ") + exasph::kVersion + " (" +
-                                          exasph::kBuildInfo + ")");
-}
 
 // Ends the run after an error: errors seen by every rank end cleanly (rank 0 reports); an error
 // on one rank of several aborts them all, so that no rank waits forever in a collective.
@@ -114,7 +72,7 @@ int main(int argc, char** argv) {
     CLI::App app{"exasph: smoothed-particle hydrodynamics (SPH-EXA mini-app physics); "
                  "runs alone or under mpirun",
                  "exasph"};
-    add_options(app, cfg);
+    exasph::cli::add_options(app, cfg);
     GlassCommand glass_cmd;
     ExactCommand exact_cmd;
     add_glass_command(app, glass_cmd);
@@ -124,9 +82,7 @@ int main(int argc, char** argv) {
     try {
         if (app.got_subcommand("glass")) return finish(run_glass(glass_cmd));
         if (app.got_subcommand("exact")) return finish(run_exact(exact_cmd));
-        exasph::cli::check_restart_rule(app, cfg);
-        if (cfg.restart_file.empty())
-            exasph::cli::resolve_scheme(app, cfg, exasph::default_scheme(cfg.init));
+        exasph::cli::finish_configuration(app, cfg);
         return finish(exasph::run(cfg, std::cout));
     } catch (const exasph::Error& e) {
         return finish_with_error(e.what(), e.exit_code(), e.all_ranks());

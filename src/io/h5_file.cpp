@@ -109,10 +109,13 @@ void write_attr(const Group& g, const std::string& name, hid_t type, const V* v,
 
 } // namespace
 
-File File::create(const std::string& path, MPI_Comm comm) {
+File File::create(const std::string& path, MPI_Comm comm, std::uint64_t user_block) {
     silence_hdf5();
     hid_t fapl = access_plist(comm);
-    hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+    if (user_block > 0) H5Pset_userblock(fcpl, hsize_t(user_block));
+    hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
+    H5Pclose(fcpl);
     H5Pclose(fapl);
     if (id < 0) fail(path, "cannot create file", 3);
     return File(id, path, comm);

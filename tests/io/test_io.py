@@ -282,8 +282,9 @@ def test_bad_input(r):
 
 def test_corrupt(r):
     """Issue 8, acceptance 3: a checkpoint whose bytes are altered on disk is refused on restart
-    with a clear message (one flipped bit in the data of x, u or id; a damaged file signature),
-    on 1 and 2 ranks; the unaltered file restarts."""
+    with a clear message (one flipped bit in the data of x, u or id; a damaged HDF5 signature;
+    a damaged seal), on 1 and 2 ranks; the unaltered file restarts. The seal (issue 21) refuses
+    every altered byte before HDF5 reads the file."""
     a = r.work / "run"
     r.run(1, *RUN, "-s", 5, "--checkpoint-every", 5, "--out", a)
     cp = a / "checkpoint_000005.h5"
@@ -294,7 +295,8 @@ def test_corrupt(r):
                  for k in ("x", "u", "id")}
     original = cp.read_bytes()
     cases = [(k, off + size // 2, "checksum mismatch") for k, (off, size) in where.items()]
-    cases.append(("signature", 2, "not an HDF5 file"))
+    cases.append(("signature", 512 + 2, "file checksum mismatch"))
+    cases.append(("seal", 2, "no exasph seal"))
     for name, offset, needle in cases:
         data = bytearray(original)
         data[offset] ^= 0x10

@@ -12,6 +12,7 @@
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/config/config.hpp"
 #include "exasph/io/atomic_output.hpp"
+#include "exasph/io/file_seal.hpp"
 #include "exasph/io/output_state.hpp"
 #include "exasph/io/particle_io.hpp"
 #include "exasph/io/restart_state.hpp"
@@ -21,8 +22,7 @@
 
 namespace exasph {
 
-inline constexpr const char* kCheckpointFormat = "exasph-checkpoint-2";
-inline constexpr const char* kCheckpointFormatUnsummed = "exasph-checkpoint-1"; // no checksum
+inline constexpr const char* kCheckpointFormat = "exasph-checkpoint-3"; // sealed (file_seal.hpp)
 
 // Checksum of everything a restart continues from: per particle a hash chain of its id and the
 // bits of every state field (in field-list order), summed over particles modulo 2^64 so that it
@@ -94,8 +94,8 @@ inline void prune_checkpoints(const std::string& dir, std::size_t keep) {
 
 // Everything needed to continue exactly: all state fields and ids of the owned particles, the
 // step, time, previous dt, first dt, box, EOS, parameters and the global tree, with their
-// checksum (verified on restart). Atomic (temporary name, then rename); the previous checkpoint
-// is kept.
+// checksum (verified on restart), then sealed (io/file_seal.hpp: a hash of the whole file in its
+// user block). Atomic (temporary name, then rename); the previous checkpoint is kept.
 template <class T>
 std::string write_checkpoint(const OutputState<T>& run, const Config& cfg, const std::string& units,
                              MPI_Comm comm) {
@@ -106,7 +106,7 @@ std::string write_checkpoint(const OutputState<T>& run, const Config& cfg, const
     const std::uint64_t checksum =
         checkpoint_checksum(run.particles, run.n_owned, rs, run.dt0, comm);
     try {
-        h5::File file = h5::File::create(temporary_name(path), comm);
+        h5::File file = h5::File::create(temporary_name(path), comm, kSealBytes);
         h5::Group root(file, "/", false);
         h5::write_attribute(root, "format", std::string(kCheckpointFormat));
         h5::write_attribute(root, "checksum", hex64(checksum));
@@ -131,6 +131,12 @@ std::string write_checkpoint(const OutputState<T>& run, const Config& cfg, const
         discard_output(path, comm);
         throw;
     }
+    try {
+        seal_file(temporary_name(path), comm);
+    } catch (...) {
+        discard_output(path, comm);
+        throw;
+    }
     commit_output(path, comm);
     if (rank == 0) prune_checkpoints(cfg.out_dir, 2);
     return path;
@@ -143,14 +149,16 @@ struct Checkpoint {
 };
 
 // Reads a checkpoint written by any rank count; fills the physics parameters of cfg. Refuses a
-// file whose checksum does not match its contents (altered or corrupted on disk).
+// file whose seal or checksum does not match its contents (altered or corrupted on disk): the
+// seal is verified before HDF5 reads a byte of it.
 template <class T>
 Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm comm) {
+    verify_seal(path, comm, "an exasph checkpoint");
     h5::File file = h5::File::open_read(path, comm);
     h5::Group root(file, "/", false);
     const std::string format =
         h5::has_attribute(root, "format") ? h5::read_attribute_string(root, "format") : "";
-    if (format != kCheckpointFormat && format != kCheckpointFormatUnsummed)
+    if (format != kCheckpointFormat)
         throw input_error(path + ": not an exasph checkpoint (attribute /format)", true);
     auto num = [&](const char* name) { return h5::read_attribute_doubles(root, name).at(0); };
     Checkpoint<T> cp;
@@ -184,15 +192,13 @@ Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm com
     h5::Group domain(file, "/domain", false);
     const std::uint64_t nkeys = h5::dataset_length(domain, "leaf_keys", true);
     cp.rs.leaf_keys = h5::read_u64(domain, "leaf_keys", 0, nkeys);
-    if (format == kCheckpointFormat) {
-        const std::string stored = h5::read_attribute_string(root, "checksum");
-        const std::string found = hex64(
-            checkpoint_checksum(cp.ic.particles, cp.ic.particles.size(), cp.rs, cp.ic.dt0, comm));
-        if (stored != found)
-            throw input_error(path + ": checksum mismatch (stored " + stored + ", contents " +
-                                  found + "): the file was altered or corrupted; not restarting",
-                              true);
-    }
+    const std::string stored = h5::read_attribute_string(root, "checksum");
+    const std::string found =
+        hex64(checkpoint_checksum(cp.ic.particles, cp.ic.particles.size(), cp.rs, cp.ic.dt0, comm));
+    if (stored != found)
+        throw input_error(path + ": checksum mismatch (stored " + stored + ", contents " + found +
+                              "): the file was altered or corrupted; not restarting",
+                          true);
     collective_check(comm, [&] { validate_input_particles(cp.ic.particles, path, cp.ic.box); });
     return cp;
 }

@@ -14,7 +14,9 @@ using Id = std::int64_t; // hid_t
 
 class File {
   public:
-    static File create(const std::string& path, MPI_Comm comm);    // truncates
+    // Truncates. user_block: bytes reserved before HDF5's own (a power of 2, >= 512; 0: none)
+    // for a header of exasph's (io/file_seal.hpp).
+    static File create(const std::string& path, MPI_Comm comm, std::uint64_t user_block = 0);
     static File open_read(const std::string& path, MPI_Comm comm); // input: errors exit 2
     File(File&& o) noexcept;
     File& operator=(File&&) = delete;
