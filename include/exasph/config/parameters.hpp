@@ -30,6 +30,20 @@ struct ValueRange {
 inline constexpr ValueRange in_range(double lo, double hi) {
     return {ValueRange::closed, lo, hi};
 }
+// Whether x is a finite value the range allows (what the command line's checks accept).
+inline constexpr bool admits(const ValueRange& r, double x) {
+    if (!(x - x == 0)) return false; // NaN or infinite
+    switch (r.kind) {
+    case ValueRange::closed:
+        return x >= r.lo && x <= r.hi;
+    case ValueRange::positive:
+        return x > 0;
+    case ValueRange::nonnegative:
+        return x >= 0;
+    default:
+        return true;
+    }
+}
 inline constexpr ValueRange kPositive{ValueRange::positive};
 inline constexpr ValueRange kNonNegative{ValueRange::nonnegative};
 

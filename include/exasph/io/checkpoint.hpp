@@ -11,11 +11,13 @@
 
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/config/config.hpp"
+#include "exasph/config/validate.hpp"
 #include "exasph/io/atomic_output.hpp"
 #include "exasph/io/file_seal.hpp"
 #include "exasph/io/output_state.hpp"
 #include "exasph/io/particle_io.hpp"
 #include "exasph/io/restart_state.hpp"
+#include "exasph/io/root_attributes.hpp"
 #include "exasph/io/run_attributes.hpp"
 #include "exasph/io/snapshot.hpp"
 #include "exasph/util/checksum.hpp"
@@ -59,9 +61,11 @@ inline void write_stir_state(const h5::Group& root, const StirState& st) {
 }
 
 inline StirState read_stir_state(const h5::Group& root) {
-    auto num = [&](const char* name) { return h5::read_attribute_doubles(root, name).at(0); };
-    return {num("stir_accel_rms"), num("stir_t_corr"), num("stir_energy_in"),
-            h5::read_attribute_doubles(root, "stir_coeff")};
+    auto coeff = h5::read_attribute_doubles(root, "stir_coeff");
+    for (double c : coeff)
+        if (!std::isfinite(c)) throw attribute_error(root, "stir_coeff", "must be finite");
+    return {read_finite(root, "stir_accel_rms"), read_finite(root, "stir_t_corr"),
+            read_finite(root, "stir_energy_in"), coeff};
 }
 
 // Test hook for the crash-safety test: with EXASPH_TEST_CHECKPOINT_STALL=STEP set, the checkpoint
@@ -160,27 +164,29 @@ Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm com
         h5::has_attribute(root, "format") ? h5::read_attribute_string(root, "format") : "";
     if (format != kCheckpointFormat)
         throw input_error(path + ": not an exasph checkpoint (attribute /format)", true);
-    auto num = [&](const char* name) { return h5::read_attribute_doubles(root, name).at(0); };
     Checkpoint<T> cp;
     read_run_parameters(root, cfg);
-    auto lo = h5::read_attribute_doubles(root, "box_lo");
-    auto hi = h5::read_attribute_doubles(root, "box_hi");
-    auto per = h5::read_attribute_doubles(root, "periodic");
-    for (int d = 0; d < 3; ++d) {
-        cp.ic.box.lo[d] = T(lo.at(d));
-        cp.ic.box.hi[d] = T(hi.at(d));
-        cp.ic.box.periodic[d] = per.at(d) != 0;
+    try { // the parameters together, as for a new run (each was range-checked when read)
+        validate_config(cfg);
+    } catch (const Error& e) {
+        throw input_error(path + ": its parameters: " + e.what(), true);
     }
-    cp.ic.eos.kind =
-        h5::read_attribute_string(root, "eos") == "tait" ? EosKind::tait : EosKind::ideal_gas;
-    cp.ic.eos.gamma = num("gamma");
-    cp.ic.eos.c0 = num("sound_speed");
+    cp.ic.box = read_box<T>(root);
+    const std::string eos = h5::read_attribute_string(root, "eos");
+    if (eos != "tait" && eos != "ideal-gas")
+        throw attribute_error(root, "eos", "'" + eos + "' is not tait or ideal-gas");
+    cp.ic.eos.kind = eos == "tait" ? EosKind::tait : EosKind::ideal_gas;
+    cp.ic.eos.gamma = read_finite(root, "gamma");
+    cp.ic.eos.c0 = read_finite(root, "sound_speed");
     cp.ic.units = h5::read_attribute_string(root, "units");
-    cp.ic.dt0 = num("dt0");
+    cp.ic.dt0 = read_finite(root, "dt0");
     cp.ic.name = cfg.init;
-    cp.rs.time = num("time");
-    cp.rs.step = std::int64_t(num("step"));
-    cp.rs.dt_m1 = num("dt_m1");
+    cp.rs.time = read_finite(root, "time");
+    const double step = read_finite(root, "step");
+    cp.rs.dt_m1 = read_finite(root, "dt_m1");
+    if (!(cp.ic.dt0 > 0 && cp.rs.dt_m1 >= 0 && step >= 0 && step < 9e15 && cp.ic.eos.gamma > 0))
+        throw input_error(path + ": dt0, dt_m1, step or gamma out of range", true);
+    cp.rs.step = std::int64_t(step);
     if (h5::has_attribute(root, "stir_coeff")) cp.rs.stir = read_stir_state(root);
     h5::Group state(file, "/state", false);
     // Optional state fields (Tait reference state, alpha, X) are in the file when the run

@@ -7,6 +7,7 @@
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/io/h5_file.hpp"
 #include "exasph/io/particle_io.hpp"
+#include "exasph/io/root_attributes.hpp"
 
 namespace exasph {
 
@@ -40,39 +41,15 @@ InitialConditions<T> read_initial_conditions(const std::string& path, MPI_Comm c
     h5::Group root(file, "/", false);
     InitialConditions<T> ic;
     ic.name = path;
-    auto vec3 = [&](const std::string& name, bool required, double dflt) {
-        if (!required && !h5::has_attribute(root, name)) return std::vector<double>(3, dflt);
-        auto v = h5::read_attribute_doubles(root, name);
-        if (v.size() != 3)
-            throw input_error(path + ": attribute /" + name + " must have 3 values, has " +
-                              std::to_string(v.size()));
-        return v;
-    };
-    auto scalar = [&](const std::string& name, double dflt) {
-        if (!h5::has_attribute(root, name)) return dflt;
-        auto v = h5::read_attribute_doubles(root, name);
-        if (v.size() != 1 || !std::isfinite(v[0]))
-            throw input_error(path + ": attribute /" + name + " must be one finite number");
-        return v[0];
-    };
-    auto lo = vec3("box_lo", true, 0), hi = vec3("box_hi", true, 0),
-         per = vec3("periodic", false, 0);
-    for (int d = 0; d < 3; ++d) {
-        if (!(std::isfinite(lo[d]) && std::isfinite(hi[d]) && lo[d] < hi[d]))
-            throw input_error(path +
-                              ": attributes box_lo/box_hi must be finite with box_lo < box_hi");
-        ic.box.lo[d] = T(lo[d]);
-        ic.box.hi[d] = T(hi[d]);
-        ic.box.periodic[d] = per[d] != 0;
-    }
+    ic.box = read_box<T>(root);
     if (h5::has_attribute(root, "eos") && h5::read_attribute_string(root, "eos") != "ideal-gas")
         throw input_error(path +
                           ": attribute /eos: only 'ideal-gas' initial conditions can be read");
-    ic.eos = {EosKind::ideal_gas, scalar("gamma", 5.0 / 3.0), 0.0};
+    ic.eos = {EosKind::ideal_gas, read_finite(root, "gamma", 5.0 / 3.0), 0.0};
     if (!(ic.eos.gamma > 1.0)) throw input_error(path + ": attribute /gamma must be above 1");
-    ic.dt0 = scalar("dt0", 1e-6);
+    ic.dt0 = read_finite(root, "dt0", 1e-6);
     if (!(ic.dt0 > 0)) throw input_error(path + ": attribute /dt0 must be positive");
-    ic.t_end = scalar("t_end", 0.0);
+    ic.t_end = read_finite(root, "t_end", 0.0);
     if (h5::has_attribute(root, "units")) ic.units = h5::read_attribute_string(root, "units");
 
     h5::Group data(file, particle_group_name(root), false);

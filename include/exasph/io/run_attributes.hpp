@@ -1,4 +1,7 @@
 #pragma once
+#include <cmath>
+#include <limits>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -41,30 +44,43 @@ inline void write_parameter(const h5::Group& g, const Param& p, const Config& cf
 inline void read_parameter(const h5::Group& g, const Param& p, Config& cfg) {
     const std::string name = std::string("param:") + p.key;
     if (!h5::has_attribute(g, name)) return;
-    auto number = [&] {
+    // A number the parameter's range admits (what the command line would accept), and one an
+    // integer holds: a damaged or hand-edited file must not set what no option could.
+    auto number = [&](double limit) {
         auto v = h5::read_attribute_doubles(g, name);
-        if (v.size() != 1)
-            throw input_error(g.file().path() + ": attribute " + name + " malformed");
+        if (v.size() != 1 || !admits(p.range, v[0]) || std::abs(v[0]) >= limit)
+            throw input_error(
+                g.file().path() + ": attribute " + name + " malformed or out of " + "range", true);
         return v[0];
     };
     std::visit(
         [&](const auto& m) {
             using M = std::decay_t<decltype(m)>;
             if constexpr (std::is_same_v<M, CustomValue>) {
-                m.parse(h5::read_attribute_string(g, name), cfg);
+                try {
+                    m.parse(h5::read_attribute_string(g, name), cfg);
+                } catch (const std::invalid_argument& e) {
+                    throw input_error(g.file().path() + ": attribute " + name + ": " + e.what(),
+                                      true);
+                }
             } else {
                 auto& v = cfg.*m;
                 using V = std::decay_t<decltype(v)>;
                 if constexpr (std::is_same_v<V, bool>)
-                    v = number() != 0;
+                    v = number(2) != 0;
+                else if constexpr (std::is_integral_v<V>)
+                    v = V(number(double(std::numeric_limits<V>::max())));
                 else if constexpr (std::is_arithmetic_v<V>)
-                    v = V(number());
+                    v = V(number(std::numeric_limits<double>::max()));
                 else if constexpr (std::is_same_v<V, std::string>)
                     v = h5::read_attribute_string(g, name);
                 else if constexpr (std::is_enum_v<V>) {
                     const auto text = h5::read_attribute_string(g, name);
                     const auto e = choice_from_name<V>(text);
-                    if (!e) throw input_error(g.file().path() + ": " + name + " '" + text + "'?");
+                    if (!e)
+                        throw input_error(g.file().path() + ": attribute " + name + " '" + text +
+                                              "' is not one of " + choice_list<V>(),
+                                          true);
                     v = *e;
                 }
             }
