@@ -1,29 +1,53 @@
 #!/usr/bin/env bash
 # Sets up and builds exasph if needed, then runs every test (unit, validation, command line).
-# Extra arguments go to ctest (e.g. -L unit). Without arguments, the build without MPI and HDF5
-# (issue 18: what a GPU node image without them builds) is made in build-serial/ and every test
-# it has runs there first, the long validation runs included; the full build then runs the rest
-# (its MPI, I/O and tools tests) and the short tests again, not the long runs a second time: a
-# single-rank run is the same code and arithmetic in both builds, and test_mpi_cases runs every
-# case under real MPI on 1 and 3 ranks. EXASPH_SKIP_SERIAL=1 skips the serial build and runs
-# everything in the full one.
+# Extra arguments go to ctest in build/ (e.g. -L unit). Without arguments, three builds:
+#  1. build-serial/, without MPI and HDF5 (issue 18: what a GPU node image without them
+#     builds): every test it has, the long validation runs included;
+#  2. build/, the full build: the tests that need MPI or HDF5 (mpi, io, tools, fuzz replays) and
+#     the command line; not the unit and validation tests a second time (a single-rank run is
+#     the same code and arithmetic in both builds, and test_mpi_cases runs every case under real
+#     MPI on 1 and 3 ranks);
+#  3. build-sanitize/, ASan + UBSan (issue 21): the unit tests, the fuzz corpora, the small MPI
+#     tests and short runs of every scheme, label sanitize.
+# EXASPH_SKIP_SERIAL=1 / EXASPH_SKIP_SANITIZE=1 skip builds 1 / 3 (with 1 skipped, build/ runs
+# everything).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bash "$root/scripts/setup.sh"
-if [ $# -eq 0 ] && [ -z "${EXASPH_SKIP_SERIAL:-}" ]; then
-    serial="${EXASPH_SERIAL_BUILD_DIR:-$root/build-serial}"
-    echo "exasph test: the build without MPI and HDF5, in $serial"
-    if [ ! -f "$serial/CMakeCache.txt" ]; then
-        generator=()
-        command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
-        cmake -S "$root" -B "$serial" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
-            -DEXASPH_MPI=OFF -DEXASPH_HDF5=OFF -DEXASPH_BENCH=OFF
-    fi
-    cmake --build "$serial" -j "$(nproc)"
-    (cd "$serial" && ctest --output-on-failure -j 2)
-    echo "exasph test: the full build (the long validation runs ran above)"
-    cd "${EXASPH_BUILD_DIR:-$root/build}"
-    exec ctest --output-on-failure -j 2 -LE "validation|evrard|resilience"
+full="${EXASPH_BUILD_DIR:-$root/build}"
+if [ $# -gt 0 ]; then
+    cd "$full"
+    exec ctest --output-on-failure -j 2 "$@"
 fi
-cd "${EXASPH_BUILD_DIR:-$root/build}"
-exec ctest --output-on-failure -j 2 "$@"
+
+# Configures (once) and builds a second build folder: build_in DIR CMAKE_ARGS...
+build_in() {
+    local dir=$1
+    shift
+    if [ ! -f "$dir/CMakeCache.txt" ]; then
+        local generator=()
+        command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
+        cmake -S "$root" -B "$dir" "${generator[@]}" -DEXASPH_BENCH=OFF "$@"
+    fi
+    cmake --build "$dir" -j "$(nproc)"
+}
+
+if [ -z "${EXASPH_SKIP_SERIAL:-}" ]; then
+    serial="${EXASPH_SERIAL_BUILD_DIR:-$root/build-serial}"
+    echo "exasph test: 1. the build without MPI and HDF5, in $serial"
+    build_in "$serial" -DCMAKE_BUILD_TYPE=Release -DEXASPH_MPI=OFF -DEXASPH_HDF5=OFF
+    (cd "$serial" && ctest --output-on-failure -j 2)
+    echo "exasph test: 2. the full build (unit and validation tests ran above)"
+    (cd "$full" && ctest --output-on-failure -j 2 -LE "unit|backend|validation|evrard|resilience")
+else
+    echo "exasph test: the full build, every test"
+    (cd "$full" && ctest --output-on-failure -j 2)
+fi
+if [ -z "${EXASPH_SKIP_SANITIZE:-}" ]; then
+    sanitize="${EXASPH_SANITIZE_BUILD_DIR:-$root/build-sanitize}"
+    echo "exasph test: 3. the sanitize build (ASan + UBSan), in $sanitize"
+    build_in "$sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DEXASPH_SANITIZE=ON \
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1"
+    cd "$sanitize"
+    exec ctest --output-on-failure -j 2 -L sanitize
+fi

@@ -137,7 +137,7 @@ class Arena {
             used_ = 0;
         }
         std::uint8_t* dst = blocks_[cur_].data + used_;
-        std::memcpy(dst, rec.data(), rec.size());
+        if (!rec.empty()) std::memcpy(dst, rec.data(), rec.size()); // (an empty one has no data)
         std::memset(dst + rec.size(), 0, kReadPad); // the padding that loads may read
         used_ += rec.size();
         return dst;
