@@ -5,7 +5,10 @@
 // empty), groups added. The result is always a well-formed HDF5 file, so what the fuzzer
 // explores is exasph's reading and checking of the contents, not HDF5's parser (which is not
 // robust against damaged bytes: docs/resilience.md).
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -115,14 +118,15 @@ inline void apply_edit(hid_t g, const std::string& name, RecipeReader& r) {
 
 } // namespace detail
 
-// Copies base (one of `bases`, chosen by the recipe's first byte) to `path` and applies the
-// recipe's edits to it. Each edit names a group (of `groups`) and an object (of `names`, or
+// Writes base (one of `bases`, the files' bytes, chosen by the recipe's first byte) to `path`
+// and applies the recipe's edits to it. Each edit names a group (of `groups`) and an object (of `names`, or
 // "Step#N" with N from the recipe, so that a file may gain snapshot groups).
-inline void apply_recipe(const std::vector<std::string>& bases, const std::string& path,
+inline void apply_recipe(const std::vector<std::vector<char>>& bases, const std::string& path,
                          const std::vector<std::string>& groups,
                          const std::vector<std::string>& names, RecipeReader& r) {
-    std::filesystem::copy_file(bases[r.byte() % bases.size()], path,
-                               std::filesystem::copy_options::overwrite_existing);
+    const auto& base = bases[r.byte() % bases.size()];
+    std::ofstream(path, std::ios::binary | std::ios::trunc)
+        .write(base.data(), std::streamsize(base.size()));
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     for (int edits = 0; file >= 0 && !r.done() && edits < 16; ++edits) {
@@ -142,12 +146,17 @@ inline void apply_recipe(const std::vector<std::string>& bases, const std::strin
     if (file >= 0) H5Fclose(file);
 }
 
-// The .h5 files of a directory, in name order (the recipe's first byte picks one).
-inline std::vector<std::string> base_files(const std::string& dir) {
-    std::vector<std::string> files;
+// The bytes of the .h5 files of a directory, in name order (the recipe's first byte picks one).
+inline std::vector<std::vector<char>> base_files(const std::string& dir) {
+    std::vector<std::string> names;
     for (const auto& e : std::filesystem::directory_iterator(dir))
-        if (e.path().extension() == ".h5") files.push_back(e.path().string());
-    std::sort(files.begin(), files.end());
+        if (e.path().extension() == ".h5") names.push_back(e.path().string());
+    std::sort(names.begin(), names.end());
+    std::vector<std::vector<char>> files;
+    for (const auto& n : names) {
+        std::ifstream in(n, std::ios::binary);
+        files.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
     return files;
 }
 

@@ -29,6 +29,7 @@ dict=()
 export ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1
 export EXASPH_FUZZ_DIR=${EXASPH_FUZZ_DIR:-/dev/shm}
 cd "$findings"
-"$build/fuzz/fuzz_$harness" "$corpus" "$root/fuzz/corpus/$harness" "${dict[@]}" \
+TIMEFORMAT="fuzz.sh: campaign of $harness: %R s wall, %U s user + %S s system CPU"
+time "$build/fuzz/fuzz_$harness" "$corpus" "$root/fuzz/corpus/$harness" "${dict[@]}" \
     -max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -jobs="$jobs" -workers="$jobs" \
     -print_final_stats=1

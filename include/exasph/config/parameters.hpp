@@ -230,8 +230,10 @@ inline const std::array kParameters{
     Param{"--sdc-rollback-dir", "sdc_rollback_dir", "Directory of the disk rollback point, e.g. "
           "node-local scratch on a cluster (default: the --out directory)", "", OnRestart::given,
           &Config::sdc_rollback_dir, {}, false},
-    Param{"--inject-fault", "inject_fault", "Testing: flip bit BIT of state field FIELD of "
-          "particle ID at the start of step STEP, once (STEP:FIELD:ID:BIT)", "",
+    Param{"--inject-fault", "inject_fault", "Testing: flip bit BIT of field FIELD of particle "
+          "ID at the start of step STEP, or at the end of its phase PHASE (sync, neighbours, "
+          "density, density_halos, iad, momentum_energy, gravity, timestep, update, h_update, "
+          "diagnostics), once (STEP:FIELD:ID:BIT[:PHASE])", "",
           OnRestart::given, &Config::inject_fault, {}, false},
 };
 // clang-format on

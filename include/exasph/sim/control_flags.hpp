@@ -7,7 +7,13 @@
 namespace exasph {
 
 // Run-control flags every rank learns at the end of a step through the diagnostics collective.
-enum ControlFlag : std::size_t { kStopRequested, kCheckpointByClock, kNumControlFlags };
+// kStateChanged: a rank's mid-step state check found a change (sim/safety.hpp).
+enum ControlFlag : std::size_t {
+    kStopRequested,
+    kCheckpointByClock,
+    kStateChanged,
+    kNumControlFlags
+};
 
 // A flag raised on any rank is seen by all after the next reduction: the flags travel as the
 // maxima of kNumControlFlags SumMax elements.

@@ -50,13 +50,28 @@ class SafetyNet {
     bool corrupted_before(ParticleSet<T>& ps, std::size_t n, const Box<T>& box, std::int64_t step,
                           double dt_m1, bool u_positive) {
         watchdog_fired_ = false;
-        if (fault_.step == step && !fault_done_) {
-            inject_fault(ps, n, fault_); // on the rank that owns the particle
-            fault_done_ = true;
-        }
+        step_ = step;
+        if (fault_.phase < 0) inject_due(ps, n, -1);
         if (!on()) return false;
         detail_ = guard_.check(ps, n, box, dt_m1, press_ok_, u_positive);
         return !detail_.empty();
+    }
+
+    // The end of phase `phase` of the step in progress. The owned particles' state must not
+    // change from the end of the sync (order and ownership settled) to the end of the force
+    // phases (issue 21's fault map: flips there escaped the checks between steps); an
+    // order-free sum of their state hashes is taken at the one and compared at the other (not
+    // in step 1, which sets the Tait reference state and the first volume weights). Returns
+    // whether this rank found a change. Then the test fault, if it is due now.
+    bool after_phase(std::size_t phase, ParticleSet<T>& ps, std::size_t n) {
+        bool changed = false;
+        if (on() && step_ > 1 && phase == kSync) settled_sum_ = state_hash_sum(ps, n);
+        if (on() && step_ > 1 && phase == kGravity && state_hash_sum(ps, n) != settled_sum_) {
+            detail_ = "the state changed during the step, before the update";
+            changed = true;
+        }
+        inject_due(ps, n, int(phase));
+        return changed;
     }
 
     // Every sdc_rollback_every steps, once every rank has found the state clean, it becomes the
@@ -71,20 +86,24 @@ class SafetyNet {
         have_point_ = true;
     }
 
-    // End of a step: the conservation watchdog, then the seal of the new state. Returns false
-    // when the watchdog fired (on every rank: the diagnostics are global).
-    bool conserved_after(const ParticleSet<T>& ps, std::size_t n, const Diagnostics& before,
-                         const Diagnostics& now, double mass0, bool check_momentum) {
-        if (!on()) return true;
+    // End of a step: the mid-step state check (changed_mid_step: some rank's after_phase found
+    // a change, seen by all through the diagnostics' flags), the conservation watchdog, then the
+    // seal of the new state. Returns "" when the step stands, else the detector that refused
+    // it (on every rank alike: both verdicts are global).
+    std::string verdict_after(const ParticleSet<T>& ps, std::size_t n, const Diagnostics& before,
+                              const Diagnostics& now, double mass0, bool check_momentum,
+                              bool changed_mid_step) {
+        if (!on()) return "";
+        if (changed_mid_step) return "the mid-step state check";
         const std::string why = watchdog_.check(before, now, mass0, check_momentum);
         if (!why.empty()) {
             if (rank_ == 0) detail_ = "watchdog: " + why;
             watchdog_fired_ = true; // on every rank: the diagnostics are global
-            return false;
+            return "the conservation watchdog";
         }
         seal(ps, n);
         press_ok_ = true;
-        return true;
+        return "";
     }
 
     void seal(const ParticleSet<T>& ps, std::size_t n) {
@@ -134,9 +153,17 @@ class SafetyNet {
     std::int64_t detection_step() const { return detection_step_; }
 
   private:
+    void inject_due(ParticleSet<T>& ps, std::size_t n, int phase) {
+        if (fault_.step != step_ || fault_.phase != phase || fault_done_) return;
+        inject_fault(ps, n, fault_); // on the rank that owns the particle
+        fault_done_ = true;
+    }
+
     SdcPolicy policy_;
     std::int64_t every_;
     int rank_;
+    std::int64_t step_ = 0;         // the step in progress
+    std::uint64_t settled_sum_ = 0; // state_hash_sum at the end of its sync
     StateGuard<T> guard_;
     EnergyWatchdog watchdog_;
     StateStore<T> point_state_; // in memory, or on disk (--sdc-rollback-store disk)

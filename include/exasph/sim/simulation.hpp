@@ -1,10 +1,8 @@
 #pragma once
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <string>
 
@@ -58,6 +56,9 @@ class Simulation {
         if (gravity_) add_initial_potential_energy(comm);
         mass0_ = diag_.mass;
         safety_.seal(ps_, n_owned());
+        timer_.observe([this](std::size_t p) {
+            if (safety_.after_phase(p, ps_, n_owned())) flags_.raise(kStateChanged);
+        });
     }
 
     // One step of the pipeline, or a rollback (recovered()) when corruption was found.
@@ -85,10 +86,10 @@ class Simulation {
         advance(dt);
         const Diagnostics before = diag_;
         diagnose(dt);
-        if (!safety_.conserved_after(ps_, n_owned(), before, diag_, mass0_,
-                                     !gravity_ && !stirring_))
-            return roll_back("the conservation watchdog after step " + std::to_string(step_),
-                             step_);
+        if (const auto by = safety_.verdict_after(ps_, n_owned(), before, diag_, mass0_,
+                                                  !gravity_ && !stirring_, flags_[kStateChanged]);
+            !by.empty())
+            return roll_back(by + " after step " + std::to_string(step_), step_);
         timer_.stop(kDiagnostics);
         timer_.end_step();
     }
@@ -101,7 +102,6 @@ class Simulation {
     const std::string& sdc_summary() const { return safety_.summary(); }
     std::string take_sdc_notice() { return safety_.take_notice(); } // budget widened: once
     std::int64_t sdc_detection_step() const { return safety_.detection_step(); }
-
     // Raises a control flag on this rank; after the next step every rank sees it (flag()).
     void raise_flag(ControlFlag f) { flags_.raise(f); }
     bool flag(ControlFlag f) const { return flags_[f]; }

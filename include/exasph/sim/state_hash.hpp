@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +31,24 @@ void state_hash_block(const ParticleSet<T>& ps, const std::vector<Field>& fields
 #pragma omp simd
         for (std::size_t k = 0; k < count; ++k) h[k] = mix64(h[k] ^ float_bits(v[k]));
     }
+}
+
+// Sum (mod 2^64) of particle_state_hash over the state fields of particles [0, n): it does not
+// depend on their order.
+template <class T>
+std::uint64_t state_hash_sum(const ParticleSet<T>& ps, std::size_t n) {
+    const auto fields = ps.fields(kState);
+    const auto blocks = std::int64_t((n + kHashBlock - 1) / kHashBlock);
+    std::uint64_t sum = 0;
+#pragma omp parallel for schedule(static) reduction(+ : sum)
+    for (std::int64_t b = 0; b < blocks; ++b) {
+        std::uint64_t h[kHashBlock];
+        const std::size_t first = std::size_t(b) * kHashBlock;
+        const std::size_t count = std::min(kHashBlock, n - first);
+        state_hash_block(ps, fields, first, count, h);
+        for (std::size_t k = 0; k < count; ++k) sum += h[k];
+    }
+    return sum;
 }
 
 } // namespace exasph

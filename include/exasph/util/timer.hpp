@@ -2,6 +2,7 @@
 #include <array>
 #include <chrono>
 #include <cstddef>
+#include <functional>
 
 namespace exasph {
 
@@ -16,13 +17,21 @@ inline double wall_seconds() {
 template <std::size_t NumPhases>
 class PhaseTimer {
   public:
+    // The observer usually refers to the timer's owner: neither is copied or moved.
+    PhaseTimer() = default;
+    PhaseTimer(const PhaseTimer&) = delete;
+    PhaseTimer& operator=(const PhaseTimer&) = delete;
     void start() { t0_ = wall_seconds(); }
-    // Charges the time since the last start()/stop() to `phase` and restarts the clock.
+    // Charges the time since the last start()/stop() to `phase` and restarts the clock; then
+    // tells the observer (if any) that the phase ended.
     void stop(std::size_t phase) {
         double t = wall_seconds();
         step_[phase] += t - t0_;
         t0_ = t;
+        if (observer_) observer_(phase);
     }
+    // Called with each phase as it ends (the fault injection of sim/fault.hpp uses it).
+    void observe(std::function<void(std::size_t)> f) { observer_ = std::move(f); }
     void begin_step() { step_.fill(0.0); }
     void end_step() {
         for (std::size_t i = 0; i < NumPhases; ++i) total_[i] += step_[i];
@@ -32,6 +41,7 @@ class PhaseTimer {
 
   private:
     double t0_ = 0.0;
+    std::function<void(std::size_t)> observer_;
     std::array<double, NumPhases> step_{};
     std::array<double, NumPhases> total_{};
 };
