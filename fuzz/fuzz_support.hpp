@@ -15,15 +15,6 @@
 
 namespace exasph::fuzz {
 
-// One MPI process (singleton, no mpirun), finalised at exit as a run would be.
-inline void start_mpi_once() {
-    int started = 0;
-    MPI_Initialized(&started);
-    if (started) return;
-    MPI_Init(nullptr, nullptr);
-    std::atexit([] { MPI_Finalize(); });
-}
-
 // The input as a file of this process (a RAM-backed directory when there is one).
 inline std::string scratch_file(const std::uint8_t* data, std::size_t size, const char* suffix) {
     const char* dir = std::getenv("EXASPH_FUZZ_DIR");

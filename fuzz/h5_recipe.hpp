@@ -17,7 +17,19 @@
 
 #include <hdf5.h>
 
+#include "exasph/util/mpi.hpp"
+
 namespace exasph::fuzz {
+
+// (The HDF5 harnesses, built only with MPI.) One MPI process (singleton, no mpirun), finalised at exit as a run would be.
+inline void start_mpi_once() {
+    int started = 0;
+    MPI_Initialized(&started);
+    if (started) return;
+    MPI_Init(nullptr, nullptr);
+    std::atexit([] { MPI_Finalize(); });
+}
+
 
 // The recipe's bytes, read one value at a time (zero once exhausted).
 class RecipeReader {
