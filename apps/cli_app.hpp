@@ -56,4 +56,4 @@ inline void finish_configuration(const CLI::App& app, Config& cfg) {
     if (cfg.restart_file.empty()) resolve_scheme(app, cfg, default_scheme(cfg.init));
 }
 
-} // namespace cli
+} // namespace exasph::cli

@@ -68,20 +68,13 @@ int main(int argc, char** argv) {
     MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    exasph::Config cfg;
-    CLI::App app{"exasph: smoothed-particle hydrodynamics (SPH-EXA mini-app physics); "
-                 "runs alone or under mpirun",
-                 "exasph"};
-    exasph::cli::add_options(app, cfg);
-    GlassCommand glass_cmd;
-    ExactCommand exact_cmd;
-    add_glass_command(app, glass_cmd);
-    add_exact_command(app, exact_cmd);
-    app.require_subcommand(0, 1);
+    CommandLine cl;
+    CLI::App& app = cl.app;
+    exasph::Config& cfg = cl.cfg;
     if (const int code = parse(app, argc, argv, rank); code >= 0) return code;
     try {
-        if (app.got_subcommand("glass")) return finish(run_glass(glass_cmd));
-        if (app.got_subcommand("exact")) return finish(run_exact(exact_cmd));
+        if (app.got_subcommand("glass")) return finish(run_glass(cl.glass));
+        if (app.got_subcommand("exact")) return finish(run_exact(cl.exact));
         exasph::cli::finish_configuration(app, cfg);
         return finish(exasph::run(cfg, std::cout));
     } catch (const exasph::Error& e) {

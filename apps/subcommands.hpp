@@ -6,7 +6,7 @@
 #include "exasph/util/mpi.hpp"
 #include <CLI/CLI.hpp>
 
-#include "cli_parameters.hpp"
+#include "cli_app.hpp"
 #include "exasph/exact/noh.hpp"
 #include "exasph/exact/sedov.hpp"
 #include "exasph/glass/glass.hpp"
@@ -113,3 +113,20 @@ inline int run_exact(const ExactCommand& ec) {
     ec.problem == "sedov" ? print_sedov(ec) : print_noh(ec);
     return 0;
 }
+
+// The whole command line: the run's options (cli_app.hpp) and the two subcommands. Used by
+// exasph.cpp and the command-line fuzzer.
+struct CommandLine {
+    exasph::Config cfg;
+    CLI::App app{"exasph: smoothed-particle hydrodynamics (SPH-EXA mini-app physics); "
+                 "runs alone or under mpirun",
+                 "exasph"};
+    GlassCommand glass;
+    ExactCommand exact;
+    CommandLine() {
+        exasph::cli::add_options(app, cfg);
+        add_glass_command(app, glass);
+        add_exact_command(app, exact);
+        app.require_subcommand(0, 1);
+    }
+};

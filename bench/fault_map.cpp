@@ -30,7 +30,7 @@ using namespace exasph;
 
 namespace {
 
-constexpr Field kCompared[] = {Field::x,  Field::y,  Field::z, Field::vx, Field::vy,
+constexpr Field kCompared[] = {Field::x,  Field::y, Field::z, Field::vx, Field::vy,
                                Field::vz, Field::u, Field::h, Field::rho};
 using Final = std::map<std::uint64_t, std::array<double, 9>>;
 
@@ -127,8 +127,8 @@ int main(int argc, char** argv) {
         auto& cell = map[fname][pname];
         ++cell[1];
         if (cls == "silent" || cls == "wrong" || cls == "internal") ++cell[0];
-        csv << step << "," << pname << "," << fname << "," << id << "," << bit << "," << cls
-            << "," << o.recoveries << ",\"" << o.error << "\"\n";
+        csv << step << "," << pname << "," << fname << "," << id << "," << bit << "," << cls << ","
+            << o.recoveries << ",\"" << o.error << "\"\n";
     }
     std::printf("| field | start | ");
     for (auto p : kPhaseNames) std::printf("%s | ", std::string(p).c_str());
@@ -139,8 +139,10 @@ int main(int argc, char** argv) {
         std::printf("| %s | ", fname.c_str());
         for (int p = -1; p < int(kNumPhases); ++p) {
             auto it = row.find(p < 0 ? "start" : std::string(kPhaseNames[p]));
-            if (it == row.end()) std::printf("- | ");
-            else std::printf("%d/%d | ", it->second[0], it->second[1]);
+            if (it == row.end())
+                std::printf("- | ");
+            else
+                std::printf("%d/%d | ", it->second[0], it->second[1]);
         }
         std::printf("\n");
     }

@@ -26,7 +26,8 @@ void check_accepted(const exasph::Checkpoint<double>& cp) {
         ok = ok && std::isfinite(ic.box.lo[d]) && std::isfinite(ic.box.hi[d]) &&
              ic.box.lo[d] < ic.box.hi[d];
     if (ok) return;
-    std::fprintf(stderr, "fuzz finding: checkpoint accepted with gamma %g dt0 %g time %g step %lld\n",
+    std::fprintf(stderr,
+                 "fuzz finding: checkpoint accepted with gamma %g dt0 %g time %g step %lld\n",
                  ic.eos.gamma, ic.dt0, cp.rs.time, (long long)cp.rs.step);
     std::abort();
 }

@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "../apps/cli_app.hpp"
 #include "../apps/subcommands.hpp"
 #include "exasph/config/validate.hpp"
 #include "fuzz_support.hpp"
@@ -35,14 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     auto args = arguments(data, size);
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
-    exasph::Config cfg;
-    CLI::App app{"exasph", "exasph"};
-    exasph::cli::add_options(app, cfg);
-    GlassCommand glass_cmd;
-    ExactCommand exact_cmd;
-    add_glass_command(app, glass_cmd);
-    add_exact_command(app, exact_cmd);
-    app.require_subcommand(0, 1);
+    CommandLine cl;
+    CLI::App& app = cl.app;
     try {
         app.parse(int(argv.size()), argv.data());
     } catch (const CLI::Error&) { // help, version or a parse error: CLI11's own message
@@ -50,8 +43,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     if (app.got_subcommand("glass") || app.got_subcommand("exact")) return 0;
     exasph::fuzz::expect_clear_refusal([&] {
-        exasph::cli::finish_configuration(app, cfg);
-        exasph::validate_config(cfg);
+        exasph::cli::finish_configuration(app, cl.cfg);
+        exasph::validate_config(cl.cfg);
     });
     return 0;
 }

@@ -22,8 +22,9 @@ void check_accepted(const exasph::InitialConditions<double>& ic) {
         ok = ok && std::isfinite(ic.box.lo[d]) && std::isfinite(ic.box.hi[d]) &&
              ic.box.lo[d] < ic.box.hi[d];
     if (ok) return;
-    std::fprintf(stderr, "fuzz finding: initial conditions accepted with gamma %g dt0 %g t_end "
-                         "%g n %zu\n",
+    std::fprintf(stderr,
+                 "fuzz finding: initial conditions accepted with gamma %g dt0 %g t_end "
+                 "%g n %zu\n",
                  ic.eos.gamma, ic.dt0, ic.t_end, ic.particles.size());
     std::abort();
 }

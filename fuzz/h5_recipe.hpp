@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <iterator>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -21,7 +21,8 @@
 
 namespace exasph::fuzz {
 
-// (The HDF5 harnesses, built only with MPI.) One MPI process (singleton, no mpirun), finalised at exit as a run would be.
+// (The HDF5 harnesses, built only with MPI.) One MPI process (singleton, no mpirun), finalised at
+// exit as a run would be.
 inline void start_mpi_once() {
     int started = 0;
     MPI_Initialized(&started);
@@ -29,7 +30,6 @@ inline void start_mpi_once() {
     MPI_Init(nullptr, nullptr);
     std::atexit([] { MPI_Finalize(); });
 }
-
 
 // The recipe's bytes, read one value at a time (zero once exhausted).
 class RecipeReader {
@@ -39,9 +39,9 @@ class RecipeReader {
     std::uint8_t byte() { return at_ < n_ ? d_[at_++] : 0; }
     // A double: one of the values readers must handle, or eight raw bytes.
     double value() {
-        static const double table[] = {0.0,  -0.0, 1.0,  -1.0,    0.5,     2.0,  1.4,
-                                       1e-10, 1e10, 1e300, -1e300, 5e-324, 3.0,  100.0,
-                                       NAN,   INFINITY, -INFINITY};
+        static const double table[] = {0.0, -0.0,  1.0,  -1.0,     0.5,      2.0,
+                                       1.4, 1e-10, 1e10, 1e300,    -1e300,   5e-324,
+                                       3.0, 100.0, NAN,  INFINITY, -INFINITY};
         const std::uint8_t k = byte();
         constexpr std::uint8_t ntable = sizeof(table) / sizeof(table[0]);
         if (k < 3 * ntable) return table[k % ntable];
@@ -97,14 +97,21 @@ inline void apply_edit(hid_t g, const std::string& name, RecipeReader& r) {
     std::vector<std::int64_t> ints(values.size());
     std::vector<float> floats(values.size());
     for (std::size_t i = 0; i < values.size(); ++i) {
-        ints[i] = values[i] == values[i] && std::abs(values[i]) < 9e18 ? std::int64_t(values[i]) : -1;
+        ints[i] =
+            values[i] == values[i] && std::abs(values[i]) < 9e18 ? std::int64_t(values[i]) : -1;
         floats[i] = float(values[i]);
     }
     const hid_t space = make_space(count, width);
     switch (op) {
-    case 0: H5Adelete(g, name.c_str()); break;
-    case 1: write_attribute(g, name, H5T_NATIVE_DOUBLE, space, values.data()); break;
-    case 2: write_attribute(g, name, H5T_NATIVE_INT64, space, ints.data()); break;
+    case 0:
+        H5Adelete(g, name.c_str());
+        break;
+    case 1:
+        write_attribute(g, name, H5T_NATIVE_DOUBLE, space, values.data());
+        break;
+    case 2:
+        write_attribute(g, name, H5T_NATIVE_INT64, space, ints.data());
+        break;
     case 3: { // a string attribute of the recipe's characters
         std::string text(count * 3, ' ');
         for (char& c : text) c = char(r.byte());
@@ -116,9 +123,15 @@ inline void apply_edit(hid_t g, const std::string& name, RecipeReader& r) {
         H5Tclose(t);
         break;
     }
-    case 4: H5Ldelete(g, name.c_str(), H5P_DEFAULT); break;
-    case 5: write_dataset(g, name, H5T_NATIVE_DOUBLE, space, values.data()); break;
-    case 6: write_dataset(g, name, H5T_NATIVE_DOUBLE, space, values.data()); break;
+    case 4:
+        H5Ldelete(g, name.c_str(), H5P_DEFAULT);
+        break;
+    case 5:
+        write_dataset(g, name, H5T_NATIVE_DOUBLE, space, values.data());
+        break;
+    case 6:
+        write_dataset(g, name, H5T_NATIVE_DOUBLE, space, values.data());
+        break;
     default: {
         const bool as_float = r.byte() & 1;
         write_dataset(g, name, as_float ? H5T_NATIVE_FLOAT : H5T_NATIVE_INT64, space,
@@ -131,8 +144,8 @@ inline void apply_edit(hid_t g, const std::string& name, RecipeReader& r) {
 } // namespace detail
 
 // Writes base (one of `bases`, the files' bytes, chosen by the recipe's first byte) to `path`
-// and applies the recipe's edits to it. Each edit names a group (of `groups`) and an object (of `names`, or
-// "Step#N" with N from the recipe, so that a file may gain snapshot groups).
+// and applies the recipe's edits to it. Each edit names a group (of `groups`) and an object (of
+// `names`, or "Step#N" with N from the recipe, so that a file may gain snapshot groups).
 inline void apply_recipe(const std::vector<std::vector<char>>& bases, const std::string& path,
                          const std::vector<std::string>& groups,
                          const std::vector<std::string>& names, RecipeReader& r) {

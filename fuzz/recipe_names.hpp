@@ -11,12 +11,17 @@
 namespace exasph::fuzz {
 
 inline std::vector<std::string> recipe_names() {
-    std::vector<std::string> names = {
-        "box_lo", "box_hi",      "periodic",   "eos",        "gamma",     "dt0",
-        "t_end",  "units",       "format",     "checksum",   "time",      "step",
-        "dt_m1", "sound_speed", "stir_coeff", "stir_accel_rms", "stir_t_corr", "stir_energy_in",
-        "leaf_keys", "case_params",
-        "code_version", "unknown"};
+    std::vector<std::string> names = {"box_lo",       "box_hi",
+                                      "periodic",     "eos",
+                                      "gamma",        "dt0",
+                                      "t_end",        "units",
+                                      "format",       "checksum",
+                                      "time",         "step",
+                                      "dt_m1",        "sound_speed",
+                                      "stir_coeff",   "stir_accel_rms",
+                                      "stir_t_corr",  "stir_energy_in",
+                                      "leaf_keys",    "case_params",
+                                      "code_version", "unknown"};
     for (const auto& p : kParameters) names.push_back(std::string("param:") + p.key);
     for (const auto& f : kFieldTable) names.emplace_back(f.name);
     names.emplace_back("id");

@@ -23,7 +23,7 @@ using MPI_User_function = void(void*, void*, int*, MPI_Datatype*);
 inline constexpr MPI_Comm MPI_COMM_WORLD = 0, MPI_COMM_SELF = 1;
 inline constexpr MPI_Datatype MPI_CHAR = 1, MPI_BYTE = 1, MPI_INT = 4, MPI_DOUBLE = 8,
                               MPI_UINT64_T = 8;
-inline constexpr MPI_Op MPI_SUM = 1, MPI_MIN = 2, MPI_MAX = 3;
+inline constexpr MPI_Op MPI_SUM = 1, MPI_MIN = 2, MPI_MAX = 3, MPI_BXOR = 4;
 inline constexpr MPI_Info MPI_INFO_NULL = 0;
 inline constexpr int MPI_SUCCESS = 0, MPI_ANY_SOURCE = -1, MPI_THREAD_FUNNELED = 1,
                      MPI_COMM_TYPE_SHARED = 1;
