@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages exasph needs (when run as root), then configures and builds it in
 # build/. Sourced by run.sh and test.sh; safe to run again (it only does what is missing).
+# EXASPH_CONFIGURE_ARGS: extra CMake arguments for build/ (test.sh sets which tests it builds).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${EXASPH_BUILD_DIR:-$root/build}"
@@ -29,9 +30,12 @@ else
          "Google Benchmark, CLI11 and MPI are installed" >&2
 fi
 
+read -r -a extra <<< "${EXASPH_CONFIGURE_ARGS:-}"
 if [ ! -f "$build/CMakeCache.txt" ]; then
     generator=()
     command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
-    cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release
+    cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "${extra[@]}"
+elif [ ${#extra[@]} -gt 0 ]; then
+    cmake "$build" "${extra[@]}" >/dev/null
 fi
 cmake --build "$build" -j "$(nproc)"

@@ -4,16 +4,18 @@
 #  1. build-serial/, without MPI and HDF5 (issue 18: what a GPU node image without them
 #     builds): every test it has, the long validation runs included;
 #  2. build/, the full build: the tests that need MPI or HDF5 (mpi, io, tools, fuzz replays) and
-#     the command line; not the unit and validation tests a second time (a single-rank run is
-#     the same code and arithmetic in both builds, and test_mpi_cases runs every case under real
-#     MPI on 1 and 3 ranks);
+#     the command line; the unit and validation tests are neither built nor run a second time
+#     (EXASPH_SINGLE_RANK_TESTS=OFF: a single-rank run is the same code and arithmetic in both
+#     builds, and test_mpi_cases runs every case under real MPI on 1 and 3 ranks);
 #  3. build-sanitize/, ASan + UBSan (issue 21): the unit tests, the fuzz corpora, the small MPI
 #     tests and short runs of every scheme, label sanitize.
 # EXASPH_SKIP_SERIAL=1 / EXASPH_SKIP_SANITIZE=1 skip builds 1 / 3 (with 1 skipped, build/ runs
 # everything).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-bash "$root/scripts/setup.sh"
+single_rank=ON # build/ builds and runs the single-rank tests unless build-serial/ runs them
+[ $# -eq 0 ] && [ -z "${EXASPH_SKIP_SERIAL:-}" ] && single_rank=OFF
+EXASPH_CONFIGURE_ARGS="-DEXASPH_SINGLE_RANK_TESTS=$single_rank" bash "$root/scripts/setup.sh"
 full="${EXASPH_BUILD_DIR:-$root/build}"
 if [ $# -gt 0 ]; then
     cd "$full"

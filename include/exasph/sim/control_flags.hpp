@@ -7,7 +7,7 @@
 namespace exasph {
 
 // Run-control flags every rank learns at the end of a step through the diagnostics collective.
-// kStateChanged: a rank's mid-step state check found a change (sim/safety.hpp).
+// kStateChanged: a rank's seals inside the step found a change (sim/step_seals.hpp).
 enum ControlFlag : std::size_t {
     kStopRequested,
     kCheckpointByClock,

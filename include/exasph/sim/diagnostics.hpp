@@ -8,6 +8,7 @@
 #include "exasph/domain/collectives.hpp"
 #include "exasph/exact/exact_density.hpp"
 #include "exasph/particles/particle_set.hpp"
+#include "exasph/sph/smoothing_length.hpp"
 #include "exasph/util/block_sum.hpp"
 
 namespace exasph {
@@ -28,14 +29,17 @@ struct Diagnostics {
     // gross rate at which energy moves between forms), sum_a m_a (|v_a| + c_a) (momentum and the
     // scale of the pressure forces' impulses) and sum_a m_a |a_a|.
     double mass = 0, power_abs = 0, momentum_abs = 0, force_abs = 0;
+    // With gravity: sum_a m_a |zeta_a dh_a|, the potential energy that this step's change of h
+    // (and with it of the softening) moves; the next step's E_pot shows it (softening_abs()).
+    double soft_abs = 0;
     // Driven turbulence: sum_a m_a v_a . a_stir,a (the stirring's power) and the energy it has
     // put in since the start of the run (etot - e_stir is conserved).
     double stir_power = 0, e_stir = 0;
 };
 
-// Layout of the diagnostics reduction: SumMax elements 0..17 below, then six for the extent of
+// Layout of the diagnostics reduction: SumMax elements 0..18 below, then six for the extent of
 // the positions (which gives next step's box without another collective).
-inline constexpr std::size_t kDiagElements = 18;
+inline constexpr std::size_t kDiagElements = 19;
 inline constexpr std::size_t kDiagWithExtent = kDiagElements + 6;
 
 // This rank's contribution over its owned particles [0, n_owned); sums are independent of the
@@ -44,7 +48,7 @@ inline constexpr std::size_t kDiagWithExtent = kDiagElements + 6;
 // are x_{n-1} (= x_n of the step) at time t - dt.
 template <class T>
 void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_t n_halo,
-                       const ExactDensity& exact, double t_rho, SumMax* out) {
+                       const ExactDensity& exact, double t_rho, double ng0, SumMax* out) {
     const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
     const T *vx = ps.data(Field::vx), *vy = ps.data(Field::vy), *vz = ps.data(Field::vz);
     const T *m = ps.data(Field::m), *u = ps.data(Field::u);
@@ -56,7 +60,18 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     const T* stir = ps.enabled(Field::stir) ? ps.data(Field::stir) : nullptr;
     const T *ax = ps.data(Field::ax), *ay = ps.data(Field::ay), *az = ps.data(Field::az),
             *du = ps.data(Field::du);
-    auto s = block_sum<15>(n_owned, [&](std::size_t i) -> std::array<double, 15> {
+    const T* gsoft = ps.enabled(Field::gsoft) ? ps.data(Field::gsoft) : nullptr;
+    const T* kx = ps.enabled(Field::kx) ? ps.data(Field::kx) : nullptr;
+    // SPEC 8's softening follows h: E_pot moves by m_a zeta_a dh_a. The density pass left
+    // gsoft_a = zeta_a (-h_a / (3 k_a Omega_a)) and SPEC 2 made dh_a / h_a = g(nc_a) - 1 from
+    // this step's nc, so m_a |zeta_a dh_a| = 3 m_a k_a Omega_a |gsoft_a (g - 1)|, Omega_a ~ 1.
+    auto softening_moved = [&](std::size_t i) {
+        if (!gsoft) return 0.0;
+        const double k = kx ? double(kx[i]) : rho(i);
+        const double g = update_smoothing_length(1.0, nc(i), ng0);
+        return 3 * double(m[i]) * k * std::abs(double(gsoft[i]) * (g - 1));
+    };
+    auto s = block_sum<16>(n_owned, [&](std::size_t i) -> std::array<double, 16> {
         const double mi = m[i];
         const double v2 = double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i];
         const double va = double(vx[i]) * ax[i] + double(vy[i]) * ay[i] + double(vz[i]) * az[i];
@@ -75,7 +90,8 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
                 mi * (std::abs(va) + std::abs(double(du[i]))),
                 mi * (std::sqrt(v2) + cs(i)),
                 mi * std::sqrt(a2),
-                stir ? mi * stir[i] : 0.0};
+                stir ? mi * stir[i] : 0.0,
+                softening_moved(i)};
     });
     double nc_lo = std::numeric_limits<double>::infinity(), nc_hi = -nc_lo;
     for (std::size_t i = 0; i < n_owned; ++i) {
@@ -99,7 +115,7 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     }
     out[11] = {l1, rho_max};
     out[12] = {s[9], -std::numeric_limits<double>::infinity()};
-    for (int k = 0; k < 5; ++k) out[13 + k] = {s[10 + k], -std::numeric_limits<double>::infinity()};
+    for (int k = 0; k < 6; ++k) out[13 + k] = {s[10 + k], -std::numeric_limits<double>::infinity()};
 }
 
 inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
@@ -112,6 +128,7 @@ inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
     d.momentum_abs = e[15].sum;
     d.force_abs = e[16].sum;
     d.stir_power = e[17].sum;
+    d.soft_abs = e[18].sum;
     d.etot = d.ekin + d.eint + d.epot;
     d.momentum = {e[2].sum, e[3].sum, e[4].sum};
     d.angular_momentum = {e[5].sum, e[6].sum, e[7].sum};

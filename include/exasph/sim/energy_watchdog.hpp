@@ -13,10 +13,10 @@ namespace exasph {
 // replays a step bit for bit (a rolled-back run ends equal to the clean run: test_sdc), so an
 // energy change that comes back identical when its step is replayed is what the integrator does
 // at this resolution, not a flipped bit (a flip lives in one state copy and is gone after the
-// rollback). Evrard at ~1,000 particles changes E_tot by 7e-4 of |E_pot| in one step against a
-// default budget of 6.5e-4 and used to roll back until it gave up. The watchdog then accepts the
-// step and widens its energy budget for the rest of the run to twice the change it saw, and says
-// so (notice()). A real flip must then move the energy more than that to be caught here; the
+// rollback). (Evrard at ~1,000 particles, whose E_pot moves with h in its first steps, used to
+// roll back until it gave up; the budget now estimates that share, sim/watchdog.hpp, and no
+// clean run of the false-alarm sweep needs this.) The watchdog then accepts the step and widens
+// its energy budget for the rest of the run to twice the change it saw, and says so (notice()). A real flip must then move the energy more than that to be caught here; the
 // state check before each step does not depend on this budget.
 class EnergyWatchdog {
   public:

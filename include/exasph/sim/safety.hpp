@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 #include <unistd.h>
+#include <utility>
 
 #include "exasph/config/config.hpp"
 #include "exasph/io/restart_state.hpp"
@@ -12,6 +13,7 @@
 #include "exasph/sim/fault.hpp"
 #include "exasph/sim/state_guard.hpp"
 #include "exasph/sim/state_store.hpp"
+#include "exasph/sim/step_seals.hpp"
 
 namespace exasph {
 
@@ -46,32 +48,34 @@ class SafetyNet {
     bool on() const { return policy_ != SdcPolicy::off; }
 
     // Start of step `step`: injects the test fault (once: a rollback replays the step cleanly),
-    // then checks the state at rest. Returns whether this rank found it corrupted.
+    // then checks the state at rest (and reports a change that the last step's seals found
+    // after the diagnostics). Returns whether this rank found it corrupted.
     bool corrupted_before(ParticleSet<T>& ps, std::size_t n, const Box<T>& box, std::int64_t step,
                           double dt_m1, bool u_positive) {
         watchdog_fired_ = false;
         step_ = step;
+        seals_.begin(step);
         if (fault_.phase < 0) inject_due(ps, n, -1);
         if (!on()) return false;
-        detail_ = guard_.check(ps, n, box, dt_m1, press_ok_, u_positive);
+        detail_ = std::exchange(late_change_, std::string());
+        if (detail_.empty()) detail_ = guard_.check(ps, n, box, dt_m1, press_ok_, u_positive);
         return !detail_.empty();
     }
 
-    // The end of phase `phase` of the step in progress. The owned particles' state must not
-    // change from the end of the sync (order and ownership settled) to the end of the force
-    // phases (issue 21's fault map: flips there escaped the checks between steps); an
-    // order-free sum of their state hashes is taken at the one and compared at the other (not
-    // in step 1, which sets the Tait reference state and the first volume weights). Returns
-    // whether this rank found a change. Then the test fault, if it is due now.
+    // The end of phase `phase` of the step in progress: the step's seals (sim/step_seals.hpp).
+    // Returns whether this rank found a change (the step raises kStateChanged). Then the test
+    // fault, if it is due now.
     bool after_phase(std::size_t phase, ParticleSet<T>& ps, std::size_t n) {
-        bool changed = false;
-        if (on() && step_ > 1 && phase == kSync) settled_sum_ = state_hash_sum(ps, n);
-        if (on() && step_ > 1 && phase == kGravity && state_hash_sum(ps, n) != settled_sum_) {
-            detail_ = "the state changed during the step, before the update";
-            changed = true;
-        }
+        const bool changed = on() && found(seals_.phase_ended(phase, ps, n));
         inject_due(ps, n, int(phase));
         return changed;
+    }
+    // Just before the update and the h update read what the step made (StepSeals).
+    bool changed_before_update(const ParticleSet<T>& ps, std::size_t n) {
+        return on() && found(seals_.before_update(ps, n));
+    }
+    bool changed_before_h_update(const ParticleSet<T>& ps, std::size_t n) {
+        return on() && found(seals_.before_h_update(ps, n));
     }
 
     // Every sdc_rollback_every steps, once every rank has found the state clean, it becomes the
@@ -86,22 +90,24 @@ class SafetyNet {
         have_point_ = true;
     }
 
-    // End of a step: the mid-step state check (changed_mid_step: some rank's after_phase found
-    // a change, seen by all through the diagnostics' flags), the conservation watchdog, then the
+    // End of a step: the step's seals (changed_mid_step: some rank's seals found a change,
+    // seen by all through the diagnostics' flags), the conservation watchdog, then the
     // seal of the new state. Returns "" when the step stands, else the detector that refused
     // it (on every rank alike: both verdicts are global).
     std::string verdict_after(const ParticleSet<T>& ps, std::size_t n, const Diagnostics& before,
                               const Diagnostics& now, double mass0, bool check_momentum,
                               bool changed_mid_step) {
         if (!on()) return "";
-        if (changed_mid_step) return "the mid-step state check";
+        if (changed_mid_step) return "the step's seals";
         const std::string why = watchdog_.check(before, now, mass0, check_momentum);
         if (!why.empty()) {
             if (rank_ == 0) detail_ = "watchdog: " + why;
             watchdog_fired_ = true; // on every rank: the diagnostics are global
             return "the conservation watchdog";
         }
-        seal(ps, n);
+        // A change after the h update is this rank's own finding: the next step's state
+        // check reports it, in that step's first collective.
+        if (on()) late_change_ = seals_.at_guard_seal(guard_.seal(ps, n));
         press_ok_ = true;
         return "";
     }
@@ -153,6 +159,11 @@ class SafetyNet {
     std::int64_t detection_step() const { return detection_step_; }
 
   private:
+    bool found(std::string change) {
+        if (change.empty()) return false;
+        detail_ = std::move(change);
+        return true;
+    }
     void inject_due(ParticleSet<T>& ps, std::size_t n, int phase) {
         if (fault_.step != step_ || fault_.phase != phase || fault_done_) return;
         inject_fault(ps, n, fault_); // on the rank that owns the particle
@@ -162,8 +173,9 @@ class SafetyNet {
     SdcPolicy policy_;
     std::int64_t every_;
     int rank_;
-    std::int64_t step_ = 0;         // the step in progress
-    std::uint64_t settled_sum_ = 0; // state_hash_sum at the end of its sync
+    std::int64_t step_ = 0; // the step in progress
+    StepSeals<T> seals_;
+    std::string late_change_; // what the seals found after the diagnostics, reported next step
     StateGuard<T> guard_;
     EnergyWatchdog watchdog_;
     StateStore<T> point_state_; // in memory, or on disk (--sdc-rollback-store disk)

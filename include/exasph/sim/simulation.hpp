@@ -127,8 +127,7 @@ class Simulation {
     const Diagnostics& diagnostics() const { return diag_; }
     // Owned particles are [0, n_owned()); halos (if any) follow.
     const ParticleSet<T>& particles() const { return ps_; }
-    // For drivers that change the state between steps on purpose (the glass relaxation); the
-    // state check sees any such change as corruption unless the run has --on-sdc off.
+    // For drivers that change the state between steps on purpose (glass relaxation, --on-sdc off).
     ParticleSet<T>& particles_to_modify() { return ps_; }
     std::size_t n_owned() const { return domain_.n_owned(); }
     const Domain<T>& domain() const { return domain_; }
@@ -224,11 +223,14 @@ class Simulation {
         return dt;
     }
 
-    // SPEC 7 and 2: the state, the AV switch, h and the volume weights move to the next step.
+    // SPEC 7 and 2: the state, the AV switch, h and the volume weights move to the next step
+    // (their inputs checked against the step's seals first, sim/step_seals.hpp).
     void advance(double dt) {
+        if (safety_.changed_before_update(ps_, n_owned())) flags_.raise(kStateChanged);
         update_state<L>(ps_, n_owned(), box_, dt, dt_m1_);
         if (cfg_.av_switch) update_viscosity<L>(ps_, n_owned(), dt, cfg_.alpha_min, cfg_.alpha);
         timer_.stop(kUpdate);
+        if (safety_.changed_before_h_update(ps_, n_owned())) flags_.raise(kStateChanged);
         update_smoothing_lengths<L>(ps_, n_owned(), cfg_.ng0);
         if (cfg_.volume_elements) update_volume_weights<L>(ps_, n_owned(), cfg_.energy_weights);
         if (stirring_) stirring_->advance(step_, dt);
@@ -239,15 +241,13 @@ class Simulation {
     }
 
     RunPoint<T> run_point() const { return {restart_state(), box_, diag_}; }
-    // The first diagnostics row needs the potential energy of the initial positions, before any
-    // step has computed forces (sim/initial_potential.hpp).
+    // The first row's E_pot, of the initial positions (sim/initial_potential.hpp).
     void add_initial_potential_energy(MPI_Comm comm) {
         diag_.epot = initial_potential_energy(ps_, n_owned(), box_, cfg_, *gravity_, comm);
         diag_.etot = diag_.ekin + diag_.eint + diag_.epot;
     }
 
-    // All ranks: after a detection (by `where`, in or before step `step`), roll back to the last
-    // verified state (or abort: SafetyNet throws).
+    // All ranks, after a detection by `where` in step `step`: back to the last verified state.
     void roll_back(const std::string& where, std::int64_t step) {
         const RunPoint<T>& point = safety_.roll_back(ps_, where, step, step_);
         box_ = point.box;
@@ -261,7 +261,7 @@ class Simulation {
     // SPEC 10 sums, run-control flags and the particles' extent (next box): one collective.
     void diagnose(double dt) {
         std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags);
-        local_diagnostics(ps_, n_owned(), domain_.n_halo(), exact_, time_ - dt, e.data());
+        local_diagnostics(ps_, n_owned(), domain_.n_halo(), exact_, time_ - dt, cfg_.ng0, e.data());
         Domain<T>::local_extent(ps_, n_owned(), e.data() + kDiagElements);
         flags_.pack(e.data() + kDiagWithExtent);
         domain_.collectives().allreduce_sum_max(e);

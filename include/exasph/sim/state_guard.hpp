@@ -18,7 +18,8 @@ namespace exasph {
 template <class T>
 class StateGuard {
   public:
-    void seal(const ParticleSet<T>& ps, std::size_t n) {
+    // Returns the sum of the hashes (state_hash_sum of the sealed state).
+    std::uint64_t seal(const ParticleSet<T>& ps, std::size_t n) {
         fields_ = ps.fields(kState);
         hashes_.resize(n);
         over_hash_blocks(ps, n, [&](std::size_t first, std::size_t count, const std::uint32_t* h) {
@@ -26,6 +27,9 @@ class StateGuard {
             return n;
         });
         sealed_ = true;
+        std::uint64_t sum = 0;
+        for (std::uint32_t h : hashes_) sum += h;
+        return sum;
     }
 
     // Empty when the state is consistent, else what is wrong (the first particle found).
@@ -108,7 +112,7 @@ class StateGuard {
                        std::uint32_t* out) const {
         std::uint64_t h[kHashBlock];
         state_hash_block(ps, fields_, first, count, h);
-        for (std::size_t k = 0; k < count; ++k) out[k] = std::uint32_t(h[k] ^ (h[k] >> 32));
+        for (std::size_t k = 0; k < count; ++k) out[k] = fold_hash(h[k]);
     }
     // Runs body(first, count, hashes) on the sealed hashes of each block of the first n
     // particles, in parallel; returns the least value the body returned (n for none).
