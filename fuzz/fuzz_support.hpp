@@ -23,6 +23,9 @@ inline std::string scratch_file(const std::uint8_t* data, std::size_t size, cons
         std::string(dir) + "/exasph-fuzz-" + std::to_string(::getpid()) + suffix;
     std::ofstream(path, std::ios::binary | std::ios::trunc)
         .write(reinterpret_cast<const char*>(data), std::streamsize(size));
+    static std::string last; // one scratch file per process: removed when it ends
+    if (last.empty()) std::atexit([] { std::remove(last.c_str()); });
+    last = path;
     return path;
 }
 
