@@ -66,6 +66,8 @@ expect_rejected "--ngmax" --ngmax 50
 expect_rejected "--courant" --courant 0
 expect_rejected "--t-end" --t-end -1
 expect_rejected "--threads" --threads 0
+expect_rejected "-w" -n 10 -w inf                      # issue 21 fuzz finding: inf into an int
+expect_rejected "-w" -n 10 -w 99999999999999999999999
 if "$exe" --version | grep -q "HDF5 off"; then
     # A build without HDF5 (issue 18) refuses the options that need files, naming them.
     expect_rejected "-w: this build has no HDF5" -n 10 -s 1 -w 1

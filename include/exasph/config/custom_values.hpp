@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -16,14 +17,20 @@ struct CustomValue {
 
 // -w N (every N steps: an integer) or -w T (every T of physical time: a decimal point or an
 // exponent makes it a time).
+// A count must be whole and fit an int64 ("inf" or 1e20 steps into an integer is undefined
+// behaviour: a fuzz finding of issue 21).
 inline void parse_write_every(const std::string& v, Config& cfg) {
     const auto x = parse_number(v);
-    if (!x || !(*x > 0))
+    if (!x || !(*x > 0) || !std::isfinite(*x))
         throw std::invalid_argument("'" + v + "' is not a positive step count or time");
-    if (v.find_first_of(".eE") == std::string::npos)
-        cfg.snapshot_every_steps = std::int64_t(*x);
-    else
+    if (v.find_first_of(".eE") != std::string::npos) {
         cfg.snapshot_every_time = *x;
+        return;
+    }
+    if (*x != std::floor(*x) || *x >= 9.2e18)
+        throw std::invalid_argument("'" + v +
+                                    "' is not a step count (a whole number below 9.2e18)");
+    cfg.snapshot_every_steps = std::int64_t(*x);
 }
 inline std::string format_write_every(const Config& cfg) {
     if (cfg.snapshot_every_steps > 0) return std::to_string(cfg.snapshot_every_steps);
