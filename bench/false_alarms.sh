@@ -4,7 +4,8 @@
 # Markdown row per run with its rollbacks (alarms) and the watchdog's budget widenings
 # (sim/energy_watchdog.hpp), then the totals. A clean run should have neither.
 #   bash bench/false_alarms.sh
-# Environment (defaults in brackets): CASES [every case], SCHEMES [std ve wc pe sh],
+# Environment (defaults in brackets): CASES [every case], SCHEMES [std ve wc pe sh; "default":
+# the case's own],
 # SIDES [8 12 16 24], RANKS [1 3], STEPS [200]; runs use one thread per rank.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,8 +28,8 @@ for c in $cases; do
         for n in $sides; do
             for r in $ranks; do
                 log="$work/$c-$s-$n-$r.log"
-                cmd=("$exe" --init "$c" --scheme "$s" -n "$n" -s "$steps" --threads 1
-                     --out "$work/out")
+                cmd=("$exe" --init "$c" -n "$n" -s "$steps" --threads 1 --out "$work/out")
+                [ "$s" != default ] && cmd+=(--scheme "$s")
                 [ "$r" -gt 1 ] && cmd=("${mpirun[@]}" -np "$r" "${cmd[@]}")
                 end=ok
                 "${cmd[@]}" > "$log" 2>&1 || end="exit $?: $(grep -m1 'error' "$log" | cut -c1-80)"
