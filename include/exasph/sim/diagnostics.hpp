@@ -30,7 +30,7 @@ struct Diagnostics {
     // scale of the pressure forces' impulses) and sum_a m_a |a_a|.
     double mass = 0, power_abs = 0, momentum_abs = 0, force_abs = 0;
     // With gravity: sum_a m_a |zeta_a dh_a|, the potential energy that this step's change of h
-    // (and with it of the softening) moves; the next step's E_pot shows it (softening_abs()).
+    // (and with it of the softening) moves; the next step's E_pot shows it (energy_budget()).
     double soft_abs = 0;
     // Driven turbulence: sum_a m_a v_a . a_stir,a (the stirring's power) and the energy it has
     // put in since the start of the run (etot - e_stir is conserved).

@@ -16,8 +16,9 @@ namespace exasph {
 // rollback). (Evrard at ~1,000 particles, whose E_pot moves with h in its first steps, used to
 // roll back until it gave up; the budget now estimates that share, sim/watchdog.hpp, and no
 // clean run of the false-alarm sweep needs this.) The watchdog then accepts the step and widens
-// its energy budget for the rest of the run to twice the change it saw, and says so (notice()). A real flip must then move the energy more than that to be caught here; the
-// state check before each step does not depend on this budget.
+// its energy budget for the rest of the run to twice the change it saw, and says so (notice()). A
+// real flip must then move the energy more than that to be caught here; the state check before each
+// step does not depend on this budget.
 class EnergyWatchdog {
   public:
     // "" when the step conserved what it must, else why it must be rolled back. Every rank
