@@ -73,15 +73,12 @@ void print_breakdown(const ParticleSet<double>& ps, std::size_t n) {
         std::vector<Field> fields;
         int passes;
     };
-    std::vector<Field> density = ps.fields(kHaloDensity),
-                       accel{Field::ax, Field::ay, Field::az, Field::du};
-    density.push_back(Field::nc);
-    if (ps.enabled(Field::divv)) accel.push_back(Field::divv);
+    using Seals = StepSeals<double>;
     const Set sets[] = {{"state: guard check and seal", ps.fields(kState), 2},
                         {"state: seals sync, update, h update", ps.fields(kState), 5},
-                        {"density pass's fields", density, 2},
-                        {"IAD matrices and strain", ps.fields(kHaloIad | kHaloGrad), 2},
-                        {"accelerations", accel, 2}};
+                        {"density pass's fields", Seals::density_fields(ps), 2},
+                        {"IAD matrices and strain", Seals::iad_fields(ps), 2},
+                        {"accelerations", Seals::acceleration_fields(ps), 2}};
     std::printf("| check | fields | passes per step | s/step |\n|---|---|---|---|\n");
     for (const auto& set : sets) {
         std::vector<double> t;
