@@ -81,8 +81,8 @@ EXASPH_HD EXASPH_INLINE T strain_along(const T (&e)[6], T dx, T dy, T dz) {
 }
 
 template <class T>
-EXASPH_HD T reconstructed_approach(T vr, T dx, T dy, T dz, const T (&ea)[6], const T (&eb)[6],
-                                   T eta, T eta_crit) {
+EXASPH_HD EXASPH_INLINE T reconstructed_approach(T vr, T dx, T dy, T dz, const T (&ea)[6],
+                                                 const T (&eb)[6], T eta, T eta_crit) {
     const T qa = strain_along(ea, dx, dy, dz);
     const T qb = strain_along(eb, dx, dy, dz);
     T phi = qa * qb > T(0) ? T(4) * qa * qb / ((qa + qb) * (qa + qb)) : T(0);
@@ -154,6 +154,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
     const T inv_w0 = kExtras ? diss.stress_inv_w0(k) : T(0);
     const int n_ts = diss.tensile_exponent;
     const bool own_stress_matrix = kExtras && diss.stress_matrix;
+    const bool stress_on = kExtras && diss.stress(); // the schemes without it skip its pair work
     T du_ts = 0;
     const T* u = p[Field::u];
     T ea[6] = {0, 0, 0, 0, 0, 0}; // the strain rate S_a, with the limiter
@@ -222,7 +223,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
         // t = 0.12.)
         T qa = pa, qb = pb;
         T tax = 0, tay = 0, taz = 0, tv = 0; // the own-matrix stress force and its work
-        if constexpr (kExtras) {
+        if (stress_on) {
             const T fn = stress_weight(kwa, kwb, inv_w0, n_ts);
             const T rb = stress_coefficient(pb, eps_ts, eps_pos);
             if (own_stress_matrix) {
