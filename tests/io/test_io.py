@@ -172,6 +172,37 @@ def test_snapshot(r):
             names.add(dset.split("/")[-1])
     assert names == {"x", "y", "z", "rho", "vx", "vy", "vz", "u", "h", "m", "p"}, names
     assert root.find(".//Topology").get("NumberOfElements") == "1728"
+    info = {i.get("Name"): i.get("Value") for i in root.find(".//Grid").findall("Information")}
+    assert info.get("scheme") == "wc" and "cgs" in info.get("units", ""), info
+    units = {a.get("Name"): a.find("Information").get("Value") for a in root.iter("Attribute")}
+    assert units["rho"] == "mass/length^3" and units["vx"] == "length/time", units
+    check_time_series(out, [3, 6])
+    # A run restarted from step 3 in the same folder: its series stops where the run is.
+    again = r.work / "series"
+    r.run(1, *RUN, "-s", 6, "-w", 2, "--checkpoint-every", 3, "--out", again)
+    check_time_series(again, [2, 4, 6])
+    r.run(1, "--restart", again / "checkpoint_000003.h5", "-s", 4, "--threads", 1, "-w", 2,
+          "--out", again)
+    check_time_series(again, [2, 4])
+
+
+def check_time_series(out, steps):
+    """DIR/snapshots.xdmf: one temporal collection of the snapshots `steps`, in order, each grid
+    naming its own file with the time h5py reads there."""
+    root = ET.parse(out / "snapshots.xdmf").getroot()
+    series = root.find("./Domain/Grid")
+    assert series.get("GridType") == "Collection", series.attrib
+    assert series.get("CollectionType") == "Temporal", series.attrib
+    grids = series.findall("Grid")
+    assert len(grids) == len(steps), [g.find("Time").get("Value") for g in grids]
+    for grid, step in zip(grids, steps):
+        name = f"snapshot_{step:06d}.h5"
+        files = {item.text.strip().split(":")[0] for item in grid.iter("DataItem")}
+        assert files == {name}, files
+        with h5py.File(out / name, "r") as f:
+            t = f[f"Step#{step}"].attrs["time"]
+        assert float(grid.find("Time").get("Value")) == t, (step, t)
+    assert not list(out.glob("*.tmp")), "temporary files left behind"
 
 
 def write_ic(path, n=8, mutate=None):

@@ -103,13 +103,17 @@ std::string write_snapshot(const OutputState<T>& run, const Config& cfg, const s
     int rank = 0;
     MPI_Comm_rank(comm, &rank);
     if (rank == 0) {
-        std::vector<std::string> names;
-        for (Field f : fields) names.emplace_back(field_info(f).name);
+        std::vector<XdmfField> xfields;
+        for (Field f : fields)
+            xfields.push_back({std::string(field_info(f).name), std::string(field_info(f).unit)});
+        const XdmfInformation info = {{"scheme", std::string(choice_name(cfg.scheme))},
+                                      {"units", units}};
         const std::string xdmf = numbered_path(cfg.out_dir, "snapshot", step, ".xdmf");
         write_text_file(temporary_name(xdmf),
-                        xdmf_text(std::filesystem::path(path).filename().string(), group, n,
-                                  run.restart.time, names));
+                        xdmf_document(xdmf_grid(std::filesystem::path(path).filename().string(),
+                                                group, n, run.restart.time, xfields, info)));
         std::filesystem::rename(temporary_name(xdmf), xdmf);
+        write_xdmf_time_series(cfg.out_dir, step);
     }
     return path;
 }
