@@ -3,8 +3,8 @@
 # Extra arguments go to ctest in build/ (e.g. -L unit). Without arguments, three builds:
 #  1. build-serial/, without MPI and HDF5 (issue 18: what a GPU node image without them
 #     builds): every test it has, the long validation runs included;
-#  2. build/, the full build: the tests that need MPI or HDF5 (mpi, io, tools, fuzz replays) and
-#     the command line; the unit and validation tests are neither built nor run a second time
+#  2. build/, the full build: the tests that need MPI or HDF5 (mpi, io, tools, the ParaView
+#     client, fuzz replays) and the command line; the unit and validation tests are neither built nor run a second time
 #     (EXASPH_SINGLE_RANK_TESTS=OFF: a single-rank run is the same code and arithmetic in both
 #     builds, and test_mpi_cases runs every case under real MPI on 1 and 3 ranks);
 #  3. build-sanitize/, ASan + UBSan (issue 21): the unit tests, the fuzz corpora, the small MPI
@@ -15,7 +15,8 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 single_rank=ON # build/ builds and runs the single-rank tests unless build-serial/ runs them
 [ $# -eq 0 ] && [ -z "${EXASPH_SKIP_SERIAL:-}" ] && single_rank=OFF
-EXASPH_CONFIGURE_ARGS="-DEXASPH_SINGLE_RANK_TESTS=$single_rank" bash "$root/scripts/setup.sh"
+EXASPH_TEST_PACKAGES="python3-paraview xvfb xauth" \
+    EXASPH_CONFIGURE_ARGS="-DEXASPH_SINGLE_RANK_TESTS=$single_rank" bash "$root/scripts/setup.sh"
 full="${EXASPH_BUILD_DIR:-$root/build}"
 if [ $# -gt 0 ]; then
     cd "$full"

@@ -50,20 +50,24 @@ bool g_write_failed = false;
     fail(g.file().path(), what, 3);
 }
 
+// Rows [offset, offset + count) of a dataset of n_global rows of `width` values (1: a 1-D
+// dataset), written collectively by every rank.
 template <class V>
-void write_1d(const Group& g, const std::string& name, hid_t memtype, hid_t filetype, const V* data,
-              std::uint64_t count, std::uint64_t offset, std::uint64_t n_global) {
-    hsize_t dims[1] = {n_global};
-    hid_t fspace = H5Screate_simple(1, dims, nullptr);
+void write_rows(const Group& g, const std::string& name, hid_t memtype, hid_t filetype,
+                const V* data, std::uint64_t count, std::uint64_t offset, std::uint64_t n_global,
+                std::uint64_t width = 1) {
+    const int rank = width > 1 ? 2 : 1;
+    hsize_t dims[2] = {n_global, width};
+    hid_t fspace = H5Screate_simple(rank, dims, nullptr);
     hid_t dset =
         H5Dcreate2(g.id(), name.c_str(), filetype, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (dset < 0) {
         H5Sclose(fspace);
         fail_write(g, "cannot create dataset " + where(g, name));
     }
-    hsize_t start[1] = {offset}, cnt[1] = {count};
+    hsize_t start[2] = {offset, 0}, cnt[2] = {count, width};
     H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
-    hid_t mspace = H5Screate_simple(1, cnt, nullptr);
+    hid_t mspace = H5Screate_simple(rank, cnt, nullptr);
     hid_t dxpl = collective_transfer();
     herr_t st = H5Dwrite(dset, memtype, mspace, fspace, dxpl, data);
     H5Pclose(dxpl);
@@ -195,11 +199,16 @@ std::vector<std::string> member_names(const Group& g) {
 
 void write_doubles(const Group& g, const std::string& name, const double* data, std::uint64_t count,
                    std::uint64_t offset, std::uint64_t n_global) {
-    write_1d(g, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, data, count, offset, n_global);
+    write_rows(g, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, data, count, offset, n_global);
+}
+void write_double_rows(const Group& g, const std::string& name, const double* data,
+                       std::uint64_t count, std::uint64_t width, std::uint64_t offset,
+                       std::uint64_t n_global) {
+    write_rows(g, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, data, count, offset, n_global, width);
 }
 void write_u64(const Group& g, const std::string& name, const std::uint64_t* data,
                std::uint64_t count, std::uint64_t offset, std::uint64_t n_global) {
-    write_1d(g, name, H5T_NATIVE_UINT64, H5T_STD_U64LE, data, count, offset, n_global);
+    write_rows(g, name, H5T_NATIVE_UINT64, H5T_STD_U64LE, data, count, offset, n_global);
 }
 
 std::uint64_t dataset_length(const Group& g, const std::string& name, bool integer) {

@@ -144,9 +144,12 @@ def test_snapshot(r):
     with h5py.File(h5, "r") as f:
         g = f["Step#6"]
         fields = {"x", "y", "z", "rho", "vx", "vy", "vz", "u", "h", "m", "p", "id"}
-        assert set(g.keys()) == fields, sorted(g.keys())
+        assert set(g.keys()) == fields | {"xyz"}, sorted(g.keys())
         for k in fields:
             assert g[k].shape == (1728,), (k, g[k].shape)
+        # The positions once more as rows, for ParaView's Xdmf3 readers.
+        xyz = np.stack([g["x"][()], g["y"][()], g["z"][()]], axis=1)
+        assert np.array_equal(g["xyz"][()], xyz)
         assert g.attrs["step"] == 6 and g.attrs["numParticles"] == 1728
         assert g.attrs["time"] > 0 and g.attrs["dt"] > 0
         assert sorted(g["id"][()]) == list(range(1728)), "ids not a permutation"
@@ -168,9 +171,9 @@ def test_snapshot(r):
             fname, dset = item.text.strip().split(":")
             assert fname == "snapshot_000006.h5", fname
             assert dset in f, dset
-            assert item.get("Dimensions") == str(f[dset].shape[0]), item.attrib
+            assert item.get("Dimensions") == " ".join(map(str, f[dset].shape)), item.attrib
             names.add(dset.split("/")[-1])
-    assert names == {"x", "y", "z", "rho", "vx", "vy", "vz", "u", "h", "m", "p"}, names
+    assert names == {"xyz", "rho", "vx", "vy", "vz", "u", "h", "m", "p"}, names
     assert root.find(".//Topology").get("NumberOfElements") == "1728"
     info = {i.get("Name"): i.get("Value") for i in root.find(".//Grid").findall("Information")}
     assert info.get("scheme") == "wc" and "cgs" in info.get("units", ""), info

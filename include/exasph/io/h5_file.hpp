@@ -71,6 +71,10 @@ void write_doubles(const Group& g, const std::string& name, const double* data, 
                    std::uint64_t offset, std::uint64_t n_global);
 void write_u64(const Group& g, const std::string& name, const std::uint64_t* data,
                std::uint64_t count, std::uint64_t offset, std::uint64_t n_global);
+// 2-D dataset of n_global rows of `width` doubles; this rank writes `count` rows at `offset`.
+void write_double_rows(const Group& g, const std::string& name, const double* data,
+                       std::uint64_t count, std::uint64_t width, std::uint64_t offset,
+                       std::uint64_t n_global);
 
 // Length of a 1-D floating-point (or, with integer = true, integer) dataset; throws Error (exit 2)
 // naming the dataset when it is missing, not 1-D or of the wrong type.

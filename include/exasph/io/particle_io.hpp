@@ -43,6 +43,19 @@ std::uint64_t write_particle_fields(const h5::Group& g, const ParticleSet<T>& ps
     return n_global;
 }
 
+// The positions once more as one N x 3 dataset "xyz": ParaView's Xdmf3 readers take points
+// only from such an array (they read no X_Y_Z geometry of three 1-D datasets).
+template <class T>
+void write_position_rows(const h5::Group& g, const ParticleSet<T>& ps, std::size_t n_local,
+                         MPI_Comm comm) {
+    std::uint64_t n_global = 0;
+    const std::uint64_t offset = global_offset(n_local, comm, n_global);
+    std::vector<double> xyz(3 * n_local);
+    for (std::size_t i = 0; i < n_local; ++i)
+        for (int d = 0; d < 3; ++d) xyz[3 * i + d] = ps.value(Field(int(Field::x) + d), i);
+    h5::write_double_rows(g, "xyz", xyz.data(), n_local, 3, offset, n_global);
+}
+
 // Rank r of P reads elements [N r / P, N (r+1) / P) of each dataset: any rank count reads any
 // file. `required` fields must exist; `optional` ones default to zero; ids default to the
 // position in the file. Every dataset must be 1-D, floating point (ids: integer), of length N.

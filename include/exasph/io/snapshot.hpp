@@ -91,6 +91,8 @@ std::string write_snapshot(const OutputState<T>& run, const Config& cfg, const s
         h5::write_attribute(g, "step", std::int64_t(step));
         h5::write_attribute(g, "dt", run.dt);
         n = write_particle_fields(g, run.particles, run.n_owned, fields, true, comm);
+        write_position_rows(g, run.particles, run.n_owned, comm);
+        h5::write_attribute(g, "unit:xyz", std::string("length"));
         h5::write_attribute(g, "numParticles", std::int64_t(n));
         for (Field f : fields)
             h5::write_attribute(g, "unit:" + std::string(field_info(f).name),

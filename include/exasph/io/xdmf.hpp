@@ -57,7 +57,8 @@ inline std::string xdmf_information(const std::string& indent, const std::string
 }
 
 // One snapshot's points as an XDMF Grid element: `h5_name` is the snapshot's file name relative
-// to the XDMF file, `group` the HDF5 group holding 1-D double datasets x, y, z and the fields.
+// to the XDMF file, `group` the HDF5 group holding the N x 3 positions xyz and 1-D double
+// datasets of the fields.
 inline std::string xdmf_grid(const std::string& h5_name, const std::string& group, std::uint64_t n,
                              double time, const std::vector<XdmfField>& fields,
                              const XdmfInformation& info) {
@@ -73,8 +74,10 @@ inline std::string xdmf_grid(const std::string& h5_name, const std::string& grou
     for (const auto& [name, value] : info) s += xdmf_information("      ", name, value);
     s += "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(n) +
          "\" NodesPerElement=\"1\"/>\n";
-    s += "      <Geometry GeometryType=\"X_Y_Z\">\n" + item("x") + item("y") + item("z") +
-         "      </Geometry>\n";
+    // Points from the N x 3 dataset xyz: both ParaView readers (XDMF and Xdmf3) take XYZ.
+    s += "      <Geometry GeometryType=\"XYZ\">\n        <DataItem Dimensions=\"" +
+         std::to_string(n) + " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" +
+         h5_name + ":" + group + "/xyz</DataItem>\n      </Geometry>\n";
     for (const auto& f : fields) {
         if (f.name == "x" || f.name == "y" || f.name == "z") continue;
         s += "      <Attribute Name=\"" + f.name + "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
