@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli_app.hpp"
+#include "config_file.hpp"
 #include "exasph/io/h5_file.hpp"
 #include "exasph/run/run.hpp"
 #include "exasph/util/memory.hpp"
@@ -75,6 +76,7 @@ int main(int argc, char** argv) {
     try {
         if (app.got_subcommand("glass")) return finish(run_glass(cl.glass));
         if (app.got_subcommand("exact")) return finish(run_exact(cl.exact));
+        if (!cl.config_file.empty()) exasph::cli::apply_config_file(app, cl.config_file);
         exasph::cli::finish_configuration(app, cfg);
         return finish(exasph::run(cfg, std::cout));
     } catch (const exasph::Error& e) {

@@ -123,8 +123,14 @@ struct CommandLine {
                  "exasph"};
     GlassCommand glass;
     ExactCommand exact;
+    std::string config_file; // --config (apps/config_file.hpp)
     CommandLine() {
         exasph::cli::add_options(app, cfg);
+        app.add_option("--config", config_file,
+                       "Run parameters from a TOML file, keys as in an output's run.toml (every "
+                       "run writes one; the command line overrides the file)")
+            ->check(CLI::ExistingFile)
+            ->type_name("FILE.toml");
         add_glass_command(app, glass);
         add_exact_command(app, exact);
         app.require_subcommand(0, 1);

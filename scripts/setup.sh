@@ -6,8 +6,8 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${EXASPH_BUILD_DIR:-$root/build}"
 
-packages=(cmake g++ make ninja-build libgtest-dev libbenchmark-dev libcli11-dev libopenmpi-dev
-          openmpi-bin libhdf5-openmpi-dev python3 python3-numpy python3-h5py python3-matplotlib)
+packages=(cmake g++ make ninja-build libgtest-dev libbenchmark-dev libcli11-dev libtomlplusplus-dev
+          libopenmpi-dev openmpi-bin libhdf5-openmpi-dev python3 python3-numpy python3-h5py python3-matplotlib)
 # EXASPH_TEST_PACKAGES: what the tests need beyond the build (scripts/test.sh: ParaView's
 # pvpython and Xvfb for the client test).
 read -r -a test_packages <<< "${EXASPH_TEST_PACKAGES:-}"
@@ -31,7 +31,7 @@ if command -v dpkg >/dev/null 2>&1; then
     fi
 else
     echo "exasph setup: not a Debian system; assuming cmake, a C++20 compiler, GoogleTest," \
-         "Google Benchmark, CLI11 and MPI are installed" >&2
+         "Google Benchmark, CLI11, toml++ and MPI are installed" >&2
 fi
 
 read -r -a extra <<< "${EXASPH_CONFIGURE_ARGS:-}"

@@ -52,6 +52,10 @@ void write_u64(const Group& g, const std::string&, const std::uint64_t*, std::ui
                std::uint64_t, std::uint64_t) {
     no_hdf5(g.file().path(), 3);
 }
+void write_double_rows(const Group& g, const std::string&, const double*, std::uint64_t,
+                       std::uint64_t, std::uint64_t, std::uint64_t) {
+    no_hdf5(g.file().path(), 3);
+}
 std::uint64_t dataset_length(const Group& g, const std::string&, bool) {
     no_hdf5(g.file().path(), 2);
 }

@@ -112,6 +112,34 @@ rc=$?
 echo "$msg" | grep -q "rollback point" || fail "unwritable --sdc-rollback-dir: $msg"
 [ "$(echo "$msg" | wc -l)" -eq 1 ] || fail "unwritable --sdc-rollback-dir: more than one line: $msg"
 
+# Parameter files (issue 22): every run writes DIR/run.toml with its resolved parameters;
+# --config reads it back (the same run, to the last digit), the command line overrides the
+# file, and a bad key, type or value is one line naming the file's line and the key.
+snapshots=(-w 0.0002) # a custom value (time or count) in the file too, where snapshots exist
+"$exe" --version | grep -q "HDF5 off" && snapshots=()
+"$exe" --init sedov -n 10 -s 4 "${snapshots[@]}" --ng0 90 --out "$work/toml1" >/dev/null 2>&1
+grep -q '^ng0 = 90 ' "$work/toml1/run.toml" || fail "run.toml lacks ng0 = 90"
+grep -q '^# The parameters of this run, written by exasph ' "$work/toml1/run.toml" ||
+    fail "run.toml does not name the version"
+"$exe" --config "$work/toml1/run.toml" --out "$work/toml2" >/dev/null 2>&1 ||
+    fail "--config run.toml failed"
+cmp -s <(cut -d, -f1-19 "$work/toml1/diagnostics.csv") <(cut -d, -f1-19 "$work/toml2/diagnostics.csv") ||
+    fail "--config run.toml did not repeat the run"
+if [ ${#snapshots[@]} -gt 0 ]; then
+    ls "$work/toml2"/snapshot_000004.h5 >/dev/null 2>&1 || fail "--config: no snapshots (-w)"
+fi
+h=$("$exe" --config "$work/toml1/run.toml" --ng0 110 -s 0 --out "$work/toml3" 2>&1 | grep '^physics:')
+echo "$h" | grep -q "ng0 110" || fail "the command line should override the file: $h"
+bad_file() { # NAME LINE_AND_KEY TOML_TEXT
+    printf '%b' "$3" >"$work/$1.toml"
+    expect_rejected "$work/$1.toml:$2" --config "$work/$1.toml" -s 1
+}
+bad_file unknown "3: unknown key 'bogus'" 'init = "sedov"\nside = 8\nbogus = 3\n'
+bad_file wrong_type "2: 'side' takes an integer" 'init = "sedov"\nside = "eight"\n'
+bad_file out_of_range "3: 'ng0': --ng0" 'init = "sedov"\n\nng0 = 5\n'
+bad_file bad_choice "1: 'scheme'" 'scheme = "nosuch"\n'
+bad_file not_toml "1: " 'init = "sedov\n'
+
 "$exe" --help | grep -q -- "--kernel-exponent" || fail "--help lacks options"
 "$exe" --version | grep -q "exasph" || fail "--version"
 

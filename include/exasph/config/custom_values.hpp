@@ -1,5 +1,6 @@
 #pragma once
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +14,7 @@ struct CustomValue {
     void (*parse)(const std::string& text, Config& cfg); // throws std::invalid_argument
     std::string (*format)(const Config& cfg);            // "" when not set
     const char* type_name;
+    std::string (*option_text)(const Config& cfg); // as `parse` takes it back ("" when not set)
 };
 
 // -w N (every N steps: an integer) or -w T (every T of physical time: a decimal point or an
@@ -38,6 +40,15 @@ inline std::string format_write_every(const Config& cfg) {
     return "";
 }
 
+// A time keeps a decimal point or an exponent (17 digits: exact), so it reads back as a time.
+inline std::string write_every_text(const Config& cfg) {
+    if (cfg.snapshot_every_time <= 0) return format_write_every(cfg);
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", cfg.snapshot_every_time);
+    std::string s = buf;
+    return s.find_first_of(".eE") == std::string::npos ? s + ".0" : s;
+}
+
 // --checkpoint-every N (steps) or auto (Young/Daly, needs --mtbf).
 inline void parse_checkpoint_every(const std::string& v, Config& cfg) {
     if (v == "auto") {
@@ -59,8 +70,9 @@ inline std::string format_checkpoint_every(const Config& cfg) {
     return cfg.checkpoint_every > 0 ? std::to_string(cfg.checkpoint_every) : "";
 }
 
-inline constexpr CustomValue kWriteEvery{parse_write_every, format_write_every, "N|T"};
+inline constexpr CustomValue kWriteEvery{parse_write_every, format_write_every, "N|T",
+                                         write_every_text};
 inline constexpr CustomValue kCheckpointEvery{parse_checkpoint_every, format_checkpoint_every,
-                                              "N|auto"};
+                                              "N|auto", format_checkpoint_every};
 
 } // namespace exasph

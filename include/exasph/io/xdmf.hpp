@@ -76,8 +76,8 @@ inline std::string xdmf_grid(const std::string& h5_name, const std::string& grou
          "\" NodesPerElement=\"1\"/>\n";
     // Points from the N x 3 dataset xyz: both ParaView readers (XDMF and Xdmf3) take XYZ.
     s += "      <Geometry GeometryType=\"XYZ\">\n        <DataItem Dimensions=\"" +
-         std::to_string(n) + " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" +
-         h5_name + ":" + group + "/xyz</DataItem>\n      </Geometry>\n";
+         std::to_string(n) + " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + h5_name +
+         ":" + group + "/xyz</DataItem>\n      </Geometry>\n";
     for (const auto& f : fields) {
         if (f.name == "x" || f.name == "y" || f.name == "z") continue;
         s += "      <Attribute Name=\"" + f.name + "\" AttributeType=\"Scalar\" Center=\"Node\">\n";

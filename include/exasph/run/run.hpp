@@ -13,10 +13,13 @@
 
 #include "exasph/util/mpi.hpp"
 
+#include "exasph/build_info.hpp"
+#include "exasph/config/run_file.hpp"
 #include "exasph/config/validate.hpp"
 #include "exasph/io/checkpoint.hpp"
 #include "exasph/io/csv_table.hpp"
 #include "exasph/io/snapshot.hpp"
+#include "exasph/io/xdmf.hpp"
 #include "exasph/run/backend.hpp"
 #include "exasph/run/diagnostics_table.hpp"
 #include "exasph/run/output_schedule.hpp"
@@ -55,6 +58,15 @@ inline std::unique_ptr<CsvTable> open_diagnostics(const Config& cfg, bool root, 
     return csv;
 }
 
+// DIR/run.toml (rank 0): the run's parameters as resolved, which --config reads back
+// (config/run_file.hpp); written under a temporary name and renamed.
+inline void write_run_file(const Config& cfg) {
+    const std::string path = (std::filesystem::path(cfg.out_dir) / "run.toml").string();
+    write_text_file(temporary_name(path), run_file_text(cfg, std::string("exasph ") + kVersion +
+                                                                 " (" + kBuildInfo + ")"));
+    std::filesystem::rename(temporary_name(path), path);
+}
+
 namespace detail {
 inline volatile std::sig_atomic_t g_stop_signal = 0;
 extern "C" inline void on_stop_signal(int signum) {
@@ -88,6 +100,7 @@ class RunDriver {
                               "none)",
                               true);
         csv_ = open_diagnostics(cfg_, root(), !cfg_.restart_file.empty(), sim_->step_count());
+        if (root()) write_run_file(cfg_);
         if (root()) print_header(out_, cfg_, *sim_, nranks_, t_end_, backend);
         if (t_end_ > 0) sim_->set_end_time(t_end_);
         schedule_ = std::make_unique<OutputSchedule>(cfg_, sim_->time(), auto_checkpoint_mtbf());
