@@ -9,7 +9,7 @@ build="${EXASPH_BUILD_DIR:-$root/build}"
 packages=(cmake g++ make ninja-build libgtest-dev libbenchmark-dev libcli11-dev libtomlplusplus-dev
           libopenmpi-dev openmpi-bin libhdf5-openmpi-dev python3 python3-numpy python3-h5py python3-matplotlib)
 # EXASPH_TEST_PACKAGES: what the tests need beyond the build (scripts/test.sh: ParaView's
-# pvpython and Xvfb for the client test).
+# pvpython and Xvfb for the client test, pip for the Python reader's install test).
 read -r -a test_packages <<< "${EXASPH_TEST_PACKAGES:-}"
 packages+=("${test_packages[@]}")
 if command -v dpkg >/dev/null 2>&1; then

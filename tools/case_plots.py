@@ -41,29 +41,22 @@ try:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+    import exasph
 except ImportError as exc:  # pragma: no cover
     fail(f"needs numpy, h5py and matplotlib ({exc}); on Debian: apt-get install "
          "python3-numpy python3-h5py python3-matplotlib (and run /usr/bin/python3)")
 
 
 def read_snapshot(path, need):
-    if not Path(path).exists():
-        fail(f"{path}: no such file")
     try:
-        f = h5py.File(path, "r")
-    except OSError as exc:
-        fail(f"{path}: not a readable HDF5 file ({exc})")
-    steps = [k for k in f.keys() if k.startswith("Step#")]
-    if not steps:
-        fail(f"{path}: no Step#N group (not an exasph snapshot)")
-    g = f[max(steps, key=lambda k: int(k[5:]))]
-    missing = [k for k in need if k not in g]
-    if missing:
-        fail(f"{path}: snapshot lacks the fields {', '.join(missing)} (write them with -f)")
-    data = {k: np.asarray(g[k][()], dtype=float) for k in need}
-    data["time"] = float(g.attrs.get("time", 0.0))
-    data["box_lo"] = np.asarray(f.attrs.get("box_lo", [0, 0, 0]), dtype=float)
-    data["box_hi"] = np.asarray(f.attrs.get("box_hi", [1, 1, 1]), dtype=float)
+        snap = exasph.load_snapshot(path).require(*need)
+    except exasph.ExasphFileError as exc:
+        fail(str(exc))
+    data = {k: snap.id if k == "id" else snap.fields[k] for k in need}
+    data["time"] = snap.time
+    data["box_lo"] = np.asarray(snap.attrs.get("box_lo", [0, 0, 0]), dtype=float)
+    data["box_hi"] = np.asarray(snap.attrs.get("box_hi", [1, 1, 1]), dtype=float)
     return data
 
 

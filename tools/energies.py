@@ -26,6 +26,8 @@ try:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+    import exasph
 except ImportError as exc:  # pragma: no cover
     fail(f"needs numpy and matplotlib ({exc}); on Debian: apt-get install python3-numpy "
          "python3-matplotlib (and run /usr/bin/python3)")
@@ -34,15 +36,10 @@ COLUMNS = ["time", "ekin", "eint", "epot", "etot"]
 
 
 def read_run(path):
-    if not Path(path).exists():
-        fail(f"{path}: no such file")
     try:
-        data = np.genfromtxt(path, delimiter=",", names=True)
-    except (ValueError, OSError) as exc:
-        fail(f"{path}: not a diagnostics CSV ({exc})")
-    if data.dtype.names is None or any(c not in data.dtype.names for c in COLUMNS):
-        fail(f"{path}: needs the columns {', '.join(COLUMNS)} (an exasph diagnostics.csv)")
-    data = np.atleast_1d(data)
+        data = exasph.load_diagnostics(path, need=COLUMNS)
+    except exasph.ExasphFileError as exc:
+        fail(str(exc))
     if data.size < 2:
         fail(f"{path}: fewer than two rows")
     return data

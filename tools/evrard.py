@@ -19,7 +19,9 @@ import argparse
 import sys
 from pathlib import Path
 
-from case_plots import fail, read_snapshot
+from case_plots import fail, read_snapshot  # puts python/ (the exasph package) on the path
+
+import exasph
 
 import numpy as np
 import matplotlib.pyplot as plt
@@ -47,11 +49,7 @@ def radial(d):
 
 
 def binned(r, q, edges):
-    idx = np.digitize(r, edges) - 1
-    ok = (idx >= 0) & (idx < len(edges) - 1)
-    cnt = np.bincount(idx[ok], minlength=len(edges) - 1)
-    s = np.bincount(idx[ok], weights=q[ok], minlength=len(edges) - 1)
-    return np.where(cnt > 0, s / np.maximum(cnt, 1), np.nan)
+    return exasph.binned_mean(r, q, edges)[0]
 
 
 def shock_radius(r, vr):
@@ -65,7 +63,10 @@ def shock_radius(r, vr):
 
 
 def energies(run):
-    d = read_csv(Path(run) / "diagnostics.csv")
+    try:
+        d = exasph.load_diagnostics(run, need=("time", "ekin", "eint", "epot", "etot"))
+    except exasph.ExasphFileError as exc:
+        fail(str(exc))
     return d["time"], d["ekin"], d["eint"], d["epot"], d["etot"]
 
 

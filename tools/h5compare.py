@@ -10,6 +10,7 @@ not, 2 on a missing or malformed file.
 """
 import argparse
 import sys
+from pathlib import Path
 
 
 def fail(msg, code=2):
@@ -20,6 +21,8 @@ def fail(msg, code=2):
 try:
     import h5py
     import numpy as np
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+    import exasph
 except ImportError as exc:  # pragma: no cover - depends on the machine
     fail(f"needs numpy and h5py ({exc}); on Debian: apt-get install python3-numpy python3-h5py")
 
@@ -32,22 +35,15 @@ for _group in (("x", "y", "z"), ("x_m1", "y_m1", "z_m1"), ("vx", "vy", "vz"), ("
         VECTORS[_name] = _group
 
 
-def particle_group(f):
-    """The /state group of a checkpoint, or the last Step#N group of a snapshot."""
-    if "state" in f:
-        return f["state"]
-    steps = [k for k in f.keys() if k.startswith("Step#")]
-    if steps:
-        return f[max(steps, key=lambda k: int(k[5:]))]
-    return f["/"]
-
-
 def load(path):
     try:
         f = h5py.File(path, "r")
     except OSError as exc:
         fail(f"{path}: cannot open ({exc})")
-    g = particle_group(f)
+    try:
+        g = exasph.particle_group(f)
+    except exasph.ExasphFileError:
+        g = f["/"]
     if "id" not in g:
         fail(f"{path}: no dataset 'id' in {g.name}")
     ids = g["id"][()]

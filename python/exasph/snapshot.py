@@ -1,0 +1,115 @@
+"""Snapshots (H5Part layout: group Step#N, one 1-D dataset per field) and checkpoints (/state)."""
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .errors import ExasphFileError
+
+
+def _open(path):
+    import h5py
+
+    if not Path(path).exists():
+        raise ExasphFileError(f"{path}: no such file")
+    try:
+        return h5py.File(path, "r")
+    except OSError as exc:
+        raise ExasphFileError(f"{path}: not a readable HDF5 file ({exc})") from None
+
+
+def particle_group(f, step=None):
+    """The /state group of a checkpoint, else the group Step#`step` of a snapshot (the last one
+    when step is None)."""
+    if "state" in f:
+        return f["state"]
+    steps = sorted((int(k[5:]) for k in f.keys() if k.startswith("Step#")))
+    if not steps:
+        raise ExasphFileError(f"{f.filename}: no Step#N group (not an exasph snapshot)")
+    if step is None:
+        step = steps[-1]
+    if step not in steps:
+        raise ExasphFileError(f"{f.filename}: no step {step} (steps: {steps})")
+    return f[f"Step#{step}"]
+
+
+def _attribute(v):
+    if isinstance(v, bytes):
+        return v.decode()
+    if isinstance(v, np.ndarray) and v.size == 1 and v.dtype.kind in "iuf":
+        return v.reshape(()).item()
+    return v.item() if isinstance(v, np.generic) else v
+
+
+@dataclass
+class Snapshot:
+    """One snapshot's particles: `fields` maps each 1-D dataset's name to a float64 array (ids
+    as uint64 in `id`), in the file's order; `units` the symbolic unit of each field; `attrs`
+    the run's attributes (parameters as `param:KEY`, `units`, `box_lo`, `box_hi`, `periodic`,
+    `gamma`, `code_version`)."""
+
+    path: str
+    step: int
+    time: float
+    dt: float
+    fields: dict
+    units: dict
+    attrs: dict = field(default_factory=dict)
+    id: np.ndarray = None
+
+    @property
+    def n(self):
+        return len(next(iter(self.fields.values())))
+
+    @property
+    def gamma(self):
+        return float(self.attrs.get("gamma", 5.0 / 3.0))
+
+    @property
+    def case(self):
+        return str(self.attrs.get("param:init", ""))
+
+    def positions(self):
+        return np.stack([self.fields["x"], self.fields["y"], self.fields["z"]], axis=1)
+
+    def radius(self, centre=(0.0, 0.0, 0.0)):
+        d = self.positions() - np.asarray(centre, dtype=float)
+        return np.sqrt(np.sum(d * d, axis=1))
+
+    def radial_velocity(self, centre=(0.0, 0.0, 0.0)):
+        d = self.positions() - np.asarray(centre, dtype=float)
+        r = np.sqrt(np.sum(d * d, axis=1))
+        v = np.stack([self.fields["vx"], self.fields["vy"], self.fields["vz"]], axis=1)
+        return np.where(r > 0, np.sum(d * v, axis=1) / np.maximum(r, 1e-300), 0.0)
+
+    def require(self, *names):
+        missing = [k for k in names if k not in self.fields and not (k == "id" and
+                                                                      self.id is not None)]
+        if missing:
+            raise ExasphFileError(f"{self.path}: snapshot lacks the fields {', '.join(missing)} "
+                                  "(write them with -f)")
+        return self
+
+
+def load_snapshot(path, step=None, fields=None):
+    """The particles of a snapshot (its last step, or `step`) or of a checkpoint; `fields`
+    limits the datasets read (x, y, z are always read)."""
+    with _open(path) as f:
+        g = particle_group(f, step)
+        names = [k for k in g.keys() if g[k].ndim == 1 and k != "id"]
+        if fields is not None:
+            wanted = set(fields) | {"x", "y", "z"}
+            missing = sorted(wanted - set(names))
+            if missing:
+                raise ExasphFileError(f"{path}: no datasets {', '.join(missing)} in {g.name}")
+            names = [k for k in names if k in wanted]
+        data = {k: np.asarray(g[k][()], dtype=float) for k in names}
+        for k in ("x", "y", "z"):
+            if k not in data:
+                raise ExasphFileError(f"{path}: no dataset {k} in {g.name}")
+        units = {k: _attribute(g.attrs[f"unit:{k}"]) for k in names if f"unit:{k}" in g.attrs}
+        attrs = {k: _attribute(v) for k, v in f.attrs.items()}
+        ids = np.asarray(g["id"][()], dtype=np.uint64) if "id" in g else None
+        step_no = int(g.attrs.get("step", -1)) if "step" in g.attrs else -1
+        return Snapshot(str(path), step_no, float(g.attrs.get("time", f.attrs.get("time", 0.0))),
+                        float(g.attrs.get("dt", 0.0)), data, units, attrs, ids)

@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""The Python reader (python/exasph, issue 22) against a 2-rank run: snapshots, a checkpoint,
+the diagnostics table, radial profiles, the exact solution, its errors, and a pip install of
+the folder. Run by CTest as  test_reader.py --exe build/exasph --mpirun "mpirun ..."."""
+import argparse
+import shlex
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))
+import exasph  # noqa: E402
+
+
+def expect_error(needle, fn, *args, **kw):
+    try:
+        fn(*args, **kw)
+    except exasph.ExasphFileError as exc:
+        assert needle in str(exc) and "\n" not in str(exc), str(exc)
+        return
+    raise AssertionError(f"{fn.__name__}{args} raised nothing")
+
+
+def check_snapshot(run):
+    path = run / "snapshot_000004.h5"
+    s = exasph.load_snapshot(path)
+    with h5py.File(path, "r") as f:
+        g = f["Step#4"]
+        assert s.n == 1000 and s.step == 4 and s.time == g.attrs["time"], (s.n, s.step, s.time)
+        for k in ("x", "rho", "vx", "u", "p"):
+            assert np.array_equal(s.fields[k], g[k][()]), k
+        assert np.array_equal(s.id, g["id"][()])
+    assert sorted(s.id.tolist()) == list(range(1000)), "ids not a permutation"
+    assert "xyz" not in s.fields and "id" not in s.fields
+    assert s.units["rho"] == "mass/length^3" and s.units["vx"] == "length/time", s.units
+    assert s.attrs["param:side"] == 10 and s.case == "sedov" and abs(s.gamma - 5 / 3) < 1e-12
+    assert len(s.attrs["box_lo"]) == 3
+    part = exasph.load_snapshot(path, fields=["rho"])
+    assert set(part.fields) == {"x", "y", "z", "rho"}, set(part.fields)
+    expect_error("no step 3", exasph.load_snapshot, path, step=3)
+    expect_error("no datasets nosuch", exasph.load_snapshot, path, fields=["nosuch"])
+    expect_error("lacks the fields alpha", s.require, "rho", "alpha")
+    # The checkpoint of the same step holds the same particles (matched by id).
+    c = exasph.load_snapshot(run / "checkpoint_000004.h5")
+    a, b = np.argsort(s.id), np.argsort(c.id)
+    assert np.array_equal(s.fields["x"][a], c.fields["x"][b])
+    print(f"snapshot: {s.n} particles, {len(s.fields)} fields, t = {s.time:.4g}; checkpoint agrees")
+    return s
+
+
+def check_diagnostics(run, w):
+    d = exasph.load_diagnostics(run)
+    assert len(d) == 4 and list(d["step"]) == [1, 2, 3, 4], d["step"]
+    assert abs(d["etot"][-1] / d["etot"][0] - 1) < 1e-3, d["etot"]
+    expect_error("no such file", exasph.load_diagnostics, w / "nowhere")
+    (w / "bad.csv").write_text("a,b\n1,2\n")
+    expect_error("needs the columns step, time", exasph.load_diagnostics, w / "bad.csv")
+    print(f"diagnostics: {len(d)} rows, {len(d.dtype.names)} columns")
+
+
+def check_profiles(s, exe):
+    r = np.random.default_rng(1).uniform(0, 1, 100000)
+    centres, mean, count = exasph.radial_profile(r, 2 * r, bins=10, rmax=1.0)
+    assert count.sum() == r.size and np.all(np.abs(mean - 2 * centres) < 0.01), mean
+    ex = exasph.exact_solution("sedov", 0.05, gamma=5 / 3, rmax=0.5, points=2000, exasph=exe)
+    k = int(np.argmax(ex["rho"]))
+    # The strong shock's compression (gamma + 1) / (gamma - 1) = 4 at the shock radius 0.3475.
+    assert 3.9 < ex["rho"][k] <= 4 + 1e-9 and abs(ex["r"][k] - 0.3475) < 0.002, (ex["rho"][k],
+                                                                                ex["r"][k])
+    expect_error("failed", exasph.exact_solution, "nosuch", 0.05, exasph=exe)
+    rp, rho, _ = exasph.radial_profile(s.radius(), s.fields["rho"], bins=20, rmax=0.5)
+    assert np.nanmax(rho) > 1.0, rho
+    print(f"profiles: exact Sedov peak {ex['rho'][k]:.4f} at r = {ex['r'][k]:.4f}")
+
+
+def check_pip_install(w):
+    """pip installs the folder (from a copy: a build leaves build/ and egg-info behind)."""
+    target, source = w / "site", w / "python"
+    shutil.copytree(ROOT / "python", source, ignore=shutil.ignore_patterns("__pycache__"))
+    subprocess.run([sys.executable, "-m", "pip", "install", "--quiet", "--no-index",
+                    "--no-deps", "--no-build-isolation", "--target", str(target), str(source)],
+                   check=True, capture_output=True)
+    p = subprocess.run([sys.executable, "-c", "import exasph; print(exasph.__file__)"],
+                       env={"PYTHONPATH": str(target)}, capture_output=True, text=True, cwd=w)
+    assert p.returncode == 0 and str(target) in p.stdout, (p.stdout, p.stderr)
+    print(f"pip install python/: imported from {p.stdout.strip()}")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--exe", required=True)
+    ap.add_argument("--mpirun", required=True)
+    a = ap.parse_args()
+    with tempfile.TemporaryDirectory() as w:
+        w = Path(w)
+        run = w / "run"
+        subprocess.run(shlex.split(a.mpirun) + ["-np", "2", a.exe, "--init", "sedov", "-n", "10",
+                       "--lattice", "-s", "4", "-w", "2", "--checkpoint-every", "4",
+                       "--threads", "1", "--out", str(run)], check=True, capture_output=True)
+        s = check_snapshot(run)
+        check_diagnostics(run, w)
+        check_profiles(s, a.exe)
+        check_pip_install(w)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
