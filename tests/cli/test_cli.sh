@@ -140,6 +140,16 @@ bad_file out_of_range "3: 'ng0': --ng0" 'init = "sedov"\n\nng0 = 5\n'
 bad_file bad_choice "1: 'scheme'" 'scheme = "nosuch"\n'
 bad_file not_toml "1: " 'init = "sedov\n'
 
+# Every example's parameter file is accepted (examples/: run with examples/run.sh CASE).
+examples=$(cd "$(dirname "$0")/../../examples" && pwd)
+"$exe" --version | grep -q "HDF5 off" && examples=/nonexistent # they write snapshots
+for params in "$examples"/*/params.toml; do
+    [ -f "$params" ] || continue
+    name=$(basename "$(dirname "$params")")
+    h=$("$exe" --config "$params" --lattice -s 0 --out "$work/example" 2>&1)
+    echo "$h" | grep -q "^case $name," || fail "examples/$name/params.toml: $h"
+done
+
 "$exe" --help | grep -q -- "--kernel-exponent" || fail "--help lacks options"
 "$exe" --version | grep -q "exasph" || fail "--version"
 
