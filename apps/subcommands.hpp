@@ -1,5 +1,5 @@
 #pragma once
-// The subcommands of the command line: `exasph glass` and `exasph exact`.
+// The subcommands of the command line: `exasph glass`, `exasph exact` and `exasph render`.
 #include <cstdio>
 #include <string>
 
@@ -10,6 +10,7 @@
 #include "exasph/exact/noh.hpp"
 #include "exasph/exact/sedov.hpp"
 #include "exasph/glass/glass.hpp"
+#include "render_command.hpp"
 
 // `exasph glass`: make a periodic glass block and report its density scatter.
 struct GlassCommand {
@@ -123,6 +124,7 @@ struct CommandLine {
                  "exasph"};
     GlassCommand glass;
     ExactCommand exact;
+    RenderCommand render;
     std::string config_file; // --config (apps/config_file.hpp)
     CommandLine() {
         exasph::cli::add_options(app, cfg);
@@ -133,6 +135,7 @@ struct CommandLine {
             ->type_name("FILE.toml");
         add_glass_command(app, glass);
         add_exact_command(app, exact);
+        add_render_command(app, render);
         app.require_subcommand(0, 1);
     }
 };

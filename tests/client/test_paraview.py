@@ -8,7 +8,8 @@ itself, so exasph's mpirun cannot run inside it).
 A 2-rank Sedov run writes three snapshots; ParaView (Debian's python3-paraview) opens one
 snapshot with each of its XDMF readers and the run's time series (snapshots.xdmf), and every
 point count, field name, field range and time value is checked against h5py; a PNG of the
-points coloured by rho is rendered off-screen and must show more than the background.
+points coloured by rho is rendered off-screen and must show more than the background; the
+grid that `exasph render` writes opens as an image holding the HDF5 grid's values.
 Exits non-zero on failure.
 """
 import argparse
@@ -101,6 +102,23 @@ def check(run, out):
         print(f"{name}: {n} points, {len(arrays)} fields, times {times}: as h5py reads them")
     colours = render(XDMFReader(FileNames=[str(run / "snapshots.xdmf")]), out / "rho.png")
     print(f"rendered {out / 'rho.png'}: {colours} colours")
+    check_render_grid(out / "slice")
+
+
+def check_render_grid(prefix):
+    """`exasph render`'s XDMF opens as an image of the HDF5 grid's size and values, in order."""
+    with h5py.File(f"{prefix}.h5", "r") as f:
+        image = f["image"][()]
+    for name, make in READERS.items():
+        reader = make(f"{prefix}.xdmf")
+        reader.UpdatePipeline()
+        data = servermanager.Fetch(reader)
+        while data.IsA("vtkMultiBlockDataSet"):
+            data = data.GetBlock(0)
+        values = vtk_to_numpy(data.GetPointData().GetArray("rho"))
+        assert data.GetNumberOfPoints() == image.size, (name, data.GetNumberOfPoints())
+        assert np.array_equal(values, image.ravel()), f"{name}: values or their order differ"
+        print(f"{name}: render grid {image.shape[1]} x {image.shape[0]} as h5py reads it")
 
 
 def main():
@@ -121,6 +139,8 @@ def main():
     subprocess.run(shlex.split(a.mpirun) + ["-np", "2", a.exe, "--init", "sedov", "-n", "12",
                                             "-s", "6", "-w", "2", "--threads", "1", "--out",
                                             str(run)], check=True, capture_output=True)
+    subprocess.run([a.exe, "render", str(run / "snapshot_000006.h5"), "--resolution", "64",
+                    "--out", str(out / "slice")], check=True, capture_output=True)
     return subprocess.run(["xvfb-run", "-a", "pvpython", __file__, "--check", "--out",
                            str(out)]).returncode
 
