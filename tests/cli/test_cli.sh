@@ -132,12 +132,19 @@ h=$("$exe" --config "$work/toml1/run.toml" --ng0 110 -s 0 --out "$work/toml3" 2>
 echo "$h" | grep -q "ng0 110" || fail "the command line should override the file: $h"
 bad_file() { # NAME LINE_AND_KEY TOML_TEXT
     printf '%b' "$3" >"$work/$1.toml"
-    expect_rejected "$work/$1.toml:$2" --config "$work/$1.toml" -s 1
+    expect_rejected "$work/$1.toml:$2" --config "$work/$1.toml"
 }
 bad_file unknown "3: unknown key 'bogus'" 'init = "sedov"\nside = 8\nbogus = 3\n'
 bad_file wrong_type "2: 'side' takes an integer" 'init = "sedov"\nside = "eight"\n'
+bad_file float_for_int "1: 'side' takes an integer" 'side = 8.5\n'
+bad_file bool_for_number "1: 'courant' takes a number" 'courant = true\n'
+bad_file string_for_flag "1: 'lattice' takes true or false" 'lattice = "yes"\n'
+bad_file numbers_for_list "1: 'fields' takes a list of strings" 'fields = [1, 2]\n'
 bad_file out_of_range "3: 'ng0': --ng0" 'init = "sedov"\n\nng0 = 5\n'
+bad_file negative_steps "1: 'steps': --steps" 'steps = -3\n'
 bad_file bad_choice "1: 'scheme'" 'scheme = "nosuch"\n'
+bad_file table "1: unknown key 'physics'" '[physics]\nng0 = 50\n'
+bad_file duplicate "3: .*'side'" 'init = "sedov"\nside = 8\nside = 9\n'
 bad_file not_toml "1: " 'init = "sedov\n'
 
 # Every example's parameter file is accepted (examples/: run with examples/run.sh CASE).

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The Python reader (python/exasph, issue 22) against a 2-rank run: snapshots, a checkpoint,
+"""The Python reader (python/exasph, issue 22) against a 3-rank run: snapshots, a checkpoint,
 the diagnostics table, radial profiles, the exact solution, its errors, and a pip install of
 the folder. Run by CTest as  test_reader.py --exe build/exasph --mpirun "mpirun ..."."""
 import argparse
@@ -79,6 +79,13 @@ def check_profiles(s, exe):
     print(f"profiles: exact Sedov peak {ex['rho'][k]:.4f} at r = {ex['r'][k]:.4f}")
 
 
+def check_import_from_repo():
+    """`python3 -c "import exasph"` in the repository's root (exasph -> python/exasph)."""
+    p = subprocess.run([sys.executable, "-c", "import exasph; print(exasph.load_snapshot)"],
+                       cwd=ROOT, env={}, capture_output=True, text=True)
+    assert p.returncode == 0 and "function load_snapshot" in p.stdout, (p.stdout, p.stderr)
+
+
 def check_pip_install(w):
     """pip installs the folder (from a copy: a build leaves build/ and egg-info behind)."""
     target, source = w / "site", w / "python"
@@ -100,12 +107,13 @@ def main():
     with tempfile.TemporaryDirectory() as w:
         w = Path(w)
         run = w / "run"
-        subprocess.run(shlex.split(a.mpirun) + ["-np", "2", a.exe, "--init", "sedov", "-n", "10",
+        subprocess.run(shlex.split(a.mpirun) + ["-np", "3", a.exe, "--init", "sedov", "-n", "10",
                        "--lattice", "-s", "4", "-w", "2", "--checkpoint-every", "4",
                        "--threads", "1", "--out", str(run)], check=True, capture_output=True)
         s = check_snapshot(run)
         check_diagnostics(run, w)
         check_profiles(s, a.exe)
+        check_import_from_repo()
         check_pip_install(w)
     return 0
 

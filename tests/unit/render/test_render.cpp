@@ -59,9 +59,10 @@ TEST(Render, ProjectedKernelIsNormalised) {
     EXPECT_GT(f(0.0), f(1.0));
 }
 
-// Shepard-normalised SPH interpolation of a linear field: exact up to the lattice's
-// discreteness (the kernel sum's first moment), well inside the box.
-TEST(Render, SliceOfALinearFieldIsTheField) {
+// Shepard-normalised SPH interpolation of a linear density field (masses rho dx^3): exact up to
+// the lattice's discreteness (the kernel sum's first moment), well inside the box; 2.8e-5 at
+// most (measured), against values 0.5 .. 3.5.
+TEST(Render, SliceOfALinearDensityIsTheDensity) {
     auto a = [](double x, double y, double z) { return 2 * x - 3 * y + 5 * z + 1; };
     const auto in = lattice(30, false, a);
     const RenderPlane g(spec(false, 64, 0.3, 0.7), in.box);
