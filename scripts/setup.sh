@@ -7,7 +7,8 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${EXASPH_BUILD_DIR:-$root/build}"
 
 packages=(cmake g++ make ninja-build libgtest-dev libbenchmark-dev libcli11-dev libtomlplusplus-dev
-          libopenmpi-dev openmpi-bin libhdf5-openmpi-dev python3 python3-numpy python3-h5py python3-matplotlib)
+          zlib1g-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev python3 python3-numpy
+          python3-h5py python3-matplotlib)
 # EXASPH_TEST_PACKAGES: what the tests need beyond the build (scripts/test.sh: ParaView's
 # pvpython and Xvfb for the client test, pip for the Python reader's install test).
 read -r -a test_packages <<< "${EXASPH_TEST_PACKAGES:-}"

@@ -1,32 +1,17 @@
 #pragma once
-#include <array>
 #include <cstdint>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include <zlib.h>
+
 #include "exasph/util/error.hpp"
 
 namespace exasph {
 
-// A minimal PNG writer (no library): 8-bit RGB, no row filter, the pixels in stored
-// (uncompressed) deflate blocks of a zlib stream; chunk CRCs and the zlib Adler-32 as the PNG
-// specification (RFC 2083) and zlib (RFC 1950/1951) define them.
-inline std::uint32_t png_crc(const std::string& bytes) {
-    static const auto table = [] {
-        std::array<std::uint32_t, 256> t{};
-        for (std::uint32_t n = 0; n < 256; ++n) {
-            std::uint32_t c = n;
-            for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            t[n] = c;
-        }
-        return t;
-    }();
-    std::uint32_t c = 0xFFFFFFFFu;
-    for (unsigned char b : bytes) c = table[(c ^ b) & 0xFF] ^ (c >> 8);
-    return c ^ 0xFFFFFFFFu;
-}
-
+// A small PNG writer: 8-bit RGB, no row filter, the rows deflated by zlib; the chunk layout and
+// CRCs as the PNG specification (RFC 2083) defines them.
 inline void put_be32(std::string& s, std::uint32_t v) {
     for (int shift = 24; shift >= 0; shift -= 8) s += char((v >> shift) & 0xFF);
 }
@@ -36,31 +21,18 @@ inline std::string png_chunk(const std::string& type, const std::string& data) {
     put_be32(s, std::uint32_t(data.size()));
     const std::string body = type + data;
     s += body;
-    put_be32(s, png_crc(body));
+    put_be32(s, std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()),
+                                    uInt(body.size()))));
     return s;
 }
 
-// The zlib stream of `raw` in stored blocks (at most 65535 bytes each).
-inline std::string zlib_stored(const std::string& raw) {
-    std::string z = "\x78\x01";
-    std::uint32_t a = 1, b = 0;
-    for (unsigned char c : raw) {
-        a = (a + c) % 65521u;
-        b = (b + a) % 65521u;
-    }
-    std::size_t pos = 0;
-    do {
-        const std::size_t len = std::min<std::size_t>(65535, raw.size() - pos);
-        const bool last = pos + len == raw.size();
-        z += char(last ? 1 : 0);
-        z += char(len & 0xFF);
-        z += char(len >> 8);
-        z += char(~len & 0xFF);
-        z += char((~len >> 8) & 0xFF);
-        z.append(raw, pos, len);
-        pos += len;
-    } while (pos < raw.size());
-    put_be32(z, (b << 16) | a);
+inline std::string zlib_compressed(const std::string& raw) {
+    uLongf size = compressBound(uLong(raw.size()));
+    std::string z(size, '\0');
+    if (compress2(reinterpret_cast<Bytef*>(z.data()), &size,
+                  reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), 6) != Z_OK)
+        throw Error("PNG: zlib could not compress the image", 3);
+    z.resize(size);
     return z;
 }
 
@@ -81,7 +53,7 @@ inline void write_png(const std::string& path, int width, int height,
     }
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out << "\x89PNG\r\n\x1a\n"
-        << png_chunk("IHDR", header) << png_chunk("IDAT", zlib_stored(raw))
+        << png_chunk("IHDR", header) << png_chunk("IDAT", zlib_compressed(raw))
         << png_chunk("IEND", "");
     out.close();
     if (!out) throw Error(path + ": cannot write", 3);
