@@ -12,6 +12,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import h5py
+import matplotlib.image
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
@@ -23,9 +24,12 @@ def render(cmd, snap, prefix, *extra):
                               *extra], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     png = Path(f"{prefix}.png").read_bytes()
-    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 128 * 128 * 3, len(png)
+    assert png[:8] == b"\x89PNG\r\n\x1a\n", png[:8]
+    picture = matplotlib.image.imread(f"{prefix}.png")  # another decoder reads it
+    assert picture.shape[0] == 128 and picture.shape[1] > 128, picture.shape
+    assert len(np.unique(picture.reshape(-1, picture.shape[2]), axis=0)) > 50, "few colours"
     root = ET.parse(f"{prefix}.xdmf").getroot()
-    assert root.find(".//Topology").get("Dimensions") == "128 128"
+    assert root.find(".//Topology").get("Dimensions") == "1 128 128"  # z, y, x (axis z)
     with h5py.File(f"{prefix}.h5", "r") as f:
         return f["image"][()], dict(f.attrs)
 
