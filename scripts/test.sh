@@ -15,7 +15,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 single_rank=ON # build/ builds and runs the single-rank tests unless build-serial/ runs them
 [ $# -eq 0 ] && [ -z "${EXASPH_SKIP_SERIAL:-}" ] && single_rank=OFF
-EXASPH_TEST_PACKAGES="python3-paraview xvfb xauth python3-pip" \
+EXASPH_TEST_PACKAGES="python3-paraview xvfb python3-pip" \
     EXASPH_CONFIGURE_ARGS="-DEXASPH_SINGLE_RANK_TESTS=$single_rank" bash "$root/scripts/setup.sh"
 full="${EXASPH_BUILD_DIR:-$root/build}"
 if [ $# -gt 0 ]; then

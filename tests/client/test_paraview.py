@@ -3,8 +3,8 @@
 
     test_paraview.py --exe build/exasph --mpirun "mpirun ..." --out DIR
 
-which runs exasph, then itself under `xvfb-run -a pvpython` with --check (pvpython starts MPI
-itself, so exasph's mpirun cannot run inside it).
+which runs exasph, then itself in `pvpython` with --check on an Xvfb display of its own
+(pvpython starts MPI itself, so exasph's mpirun cannot run inside it).
 A 2-rank Sedov run writes three snapshots; ParaView (Debian's python3-paraview) opens one
 snapshot with each of its XDMF readers and the run's time series (snapshots.xdmf), and every
 point count, field name, field range and time value is checked against h5py; a PNG of the
@@ -17,6 +17,7 @@ import os
 import shlex
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import h5py
@@ -141,8 +142,29 @@ def main():
                                             str(run)], check=True, capture_output=True)
     subprocess.run([a.exe, "render", str(run / "snapshot_000006.h5"), "--resolution", "64",
                     "--out", str(out / "slice")], check=True, capture_output=True)
-    return subprocess.run(["xvfb-run", "-a", "pvpython", __file__, "--check", "--out",
-                           str(out)]).returncode
+    return under_xvfb(["pvpython", __file__, "--check", "--out", str(out)])
+
+
+def under_xvfb(cmd):
+    """cmd with DISPLAY on an Xvfb of its own: a display number from the process id (not
+    xvfb-run -a, whose choice of a free number races with other X servers starting beside it:
+    once under ctest -j2 the render found no server), access control off, stopped at the end."""
+    n = 100 + os.getpid() % 800
+    while Path(f"/tmp/.X{n}-lock").exists() or Path(f"/tmp/.X11-unix/X{n}").exists():
+        n += 1
+    xvfb = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1280x1024x24", "-nolisten", "tcp",
+                             "-ac"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        for _ in range(300):  # up to 30 s for its socket
+            if Path(f"/tmp/.X11-unix/X{n}").exists() or xvfb.poll() is not None:
+                break
+            time.sleep(0.1)
+        assert xvfb.poll() is None, f"Xvfb :{n} exited with {xvfb.returncode}"
+        time.sleep(0.5)  # the socket exists a moment before the server accepts
+        return subprocess.run(cmd, env={**os.environ, "DISPLAY": f":{n}"}).returncode
+    finally:
+        xvfb.terminate()
+        xvfb.wait()
 
 
 if __name__ == "__main__":
