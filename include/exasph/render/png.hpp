@@ -21,8 +21,8 @@ inline std::string png_chunk(const std::string& type, const std::string& data) {
     put_be32(s, std::uint32_t(data.size()));
     const std::string body = type + data;
     s += body;
-    put_be32(s, std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()),
-                                    uInt(body.size()))));
+    put_be32(
+        s, std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
     return s;
 }
 
