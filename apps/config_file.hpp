@@ -33,10 +33,7 @@ inline const Param* param_by_key(std::string_view key) {
 // exponent (so that -w reads 10.0 as a time, 10 as a step count).
 inline std::optional<std::string> number_text(const toml::node& n) {
     if (auto i = n.value_exact<std::int64_t>()) return std::to_string(*i);
-    if (auto d = n.value_exact<double>()) {
-        std::string s = toml_number(*d);
-        return s.find_first_of(".eEn") == std::string::npos ? s + ".0" : s;
-    }
+    if (auto d = n.value_exact<double>()) return exact_number(*d, true);
     return std::nullopt;
 }
 

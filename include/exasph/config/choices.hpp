@@ -86,6 +86,18 @@ inline std::optional<double> parse_number(const std::string& text) {
 }
 
 // Numbers in the run header and in messages: %g, which prints integers without a fraction.
+// A number exactly (17 significant digits) as parse_number and TOML read it back (inf, nan);
+// with `decimal`, a finite one keeps a decimal point or an exponent (10.0, not 10), so that a
+// reader telling counts from times (-w) takes it as a time.
+inline std::string exact_number(double v, bool decimal = false) {
+    if (v != v) return "nan";
+    if (v - v != 0) return v > 0 ? "inf" : "-inf";
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    std::string s = buf;
+    return decimal && s.find_first_of(".eE") == std::string::npos ? s + ".0" : s;
+}
+
 inline std::string format_number(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", v);

@@ -43,10 +43,7 @@ inline std::string format_write_every(const Config& cfg) {
 // A time keeps a decimal point or an exponent (17 digits: exact), so it reads back as a time.
 inline std::string write_every_text(const Config& cfg) {
     if (cfg.snapshot_every_time <= 0) return format_write_every(cfg);
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", cfg.snapshot_every_time);
-    std::string s = buf;
-    return s.find_first_of(".eE") == std::string::npos ? s + ".0" : s;
+    return exact_number(cfg.snapshot_every_time, true);
 }
 
 // --checkpoint-every N (steps) or auto (Young/Daly, needs --mtbf).

@@ -23,15 +23,6 @@ inline std::string toml_string(const std::string& s) {
     return out + "\"";
 }
 
-// Exact: 17 significant digits; TOML spells the non-finite values inf and nan.
-inline std::string toml_number(double v) {
-    if (v != v) return "nan";
-    if (v - v != 0) return v > 0 ? "inf" : "-inf";
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return buf;
-}
-
 // One parameter's value as a TOML value ("" when it is not set: a sentinel default).
 inline std::string toml_value(const Param& p, const Config& cfg) {
     return std::visit(
@@ -54,7 +45,7 @@ inline std::string toml_value(const Param& p, const Config& cfg) {
                 } else if constexpr (std::is_enum_v<V>)
                     return toml_string(std::string(choice_name(v)));
                 else if constexpr (std::is_floating_point_v<V>)
-                    return toml_number(v);
+                    return exact_number(v);
                 else
                     return std::to_string(v);
             }

@@ -111,10 +111,9 @@ std::string write_snapshot(const OutputState<T>& run, const Config& cfg, const s
         const XdmfInformation info = {{"scheme", std::string(choice_name(cfg.scheme))},
                                       {"units", units}};
         const std::string xdmf = numbered_path(cfg.out_dir, "snapshot", step, ".xdmf");
-        write_text_file(temporary_name(xdmf),
-                        xdmf_document(xdmf_grid(std::filesystem::path(path).filename().string(),
-                                                group, n, run.restart.time, xfields, info)));
-        std::filesystem::rename(temporary_name(xdmf), xdmf);
+        write_text_file_atomically(
+            xdmf, xdmf_document(xdmf_grid(std::filesystem::path(path).filename().string(), group, n,
+                                          run.restart.time, xfields, info)));
         write_xdmf_time_series(cfg.out_dir, step);
     }
     return path;

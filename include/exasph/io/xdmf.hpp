@@ -104,6 +104,12 @@ inline void write_text_file(const std::string& path, const std::string& text) {
     }
 }
 
+// write_text_file under a temporary name, renamed when complete (a reader never sees half).
+inline void write_text_file_atomically(const std::string& path, const std::string& text) {
+    write_text_file(temporary_name(path), text);
+    std::filesystem::rename(temporary_name(path), path);
+}
+
 // The step of a sidecar's name snapshot_NNNNNN.xdmf, or -1 for any other name.
 inline std::int64_t sidecar_step(const std::string& name) {
     constexpr std::size_t kStem = 9, kDigits = 6; // "snapshot_", "NNNNNN"
@@ -147,11 +153,10 @@ inline void write_xdmf_time_series(const std::string& dir, std::int64_t last_ste
     std::istringstream lines(grids);
     for (std::string line; std::getline(lines, line);) nested += "  " + line + "\n";
     const std::string series = (std::filesystem::path(dir) / "snapshots.xdmf").string();
-    write_text_file(temporary_name(series),
-                    xdmf_document("    <Grid Name=\"snapshots\" GridType=\"Collection\" "
-                                  "CollectionType=\"Temporal\">\n" +
-                                  nested + "    </Grid>\n"));
-    std::filesystem::rename(temporary_name(series), series);
+    write_text_file_atomically(series,
+                               xdmf_document("    <Grid Name=\"snapshots\" GridType=\"Collection\" "
+                                             "CollectionType=\"Temporal\">\n" +
+                                             nested + "    </Grid>\n"));
 }
 
 } // namespace exasph

@@ -78,8 +78,7 @@ inline void write_render_outputs(const std::string& prefix, const std::vector<do
     write_png(prefix + ".png", cv.width, cv.height, cv.rgb);
     write_render_grid(prefix + ".h5", image, g, s, time, unit);
     const std::string h5_name = std::filesystem::path(prefix + ".h5").filename().string();
-    write_text_file(temporary_name(prefix + ".xdmf"), render_xdmf(h5_name, g, s, time));
-    std::filesystem::rename(temporary_name(prefix + ".xdmf"), prefix + ".xdmf");
+    write_text_file_atomically(prefix + ".xdmf", render_xdmf(h5_name, g, s, time));
 }
 
 } // namespace exasph
