@@ -49,6 +49,12 @@ struct Choices<BackendChoice> {
          {"auto", BackendChoice::automatic}}};
 };
 
+template <>
+struct Choices<TimeStepping> {
+    static constexpr std::array<std::pair<std::string_view, TimeStepping>, 2> values{
+        {{"global", TimeStepping::global}, {"block", TimeStepping::block}}};
+};
+
 template <class E>
 std::string_view choice_name(E e) {
     for (const auto& [name, value] : Choices<E>::values)

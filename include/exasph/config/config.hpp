@@ -12,6 +12,7 @@ enum class SdcPolicy { rollback, abort, off };     // --on-sdc
 enum class RollbackStore { disk, memory };         // --sdc-rollback-store
 enum class Scheme { std_sph, ve, wc, pe, sh };     // --scheme (config/scheme.hpp)
 enum class BackendChoice { cpu, cuda, automatic }; // --backend (run/backend.hpp)
+enum class TimeStepping { global, block };         // --timesteps (sim/block_clock.hpp)
 
 // Everything a run is configured with. Each member that the command line sets is declared
 // once more, with its flag, help, unit and restart rule, in the parameter table
@@ -42,12 +43,14 @@ struct Config {
     double tensile_stress_positive = 0.0; // the artificial stress's eps for positive pressures
     bool torque_free = false;             // pair forces without net torque (angular momentum)
     bool double_precision = false;        // rho, P, c, P/(Om k^2), C, S, nc in double, not float
-    double G = -1.0;            // gravitational constant (--G); < 0: the case's (0: no gravity)
-    double theta = 0.5;         // Barnes-Hut opening angle (SPEC 8)
-    double accel_eps = 0.2;     // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)
-    int gravity_leaf_size = 16; // gravity-tree leaf size: one interaction list per leaf
-    double stir_mach = -1.0;    // --stir-mach; < 0: the case's (0: no stirring)
-    int stir_seed = 1;          // --stir-seed: the stirring's random sequence
+    double G = -1.0;        // gravitational constant (--G); < 0: the case's (0: no gravity)
+    double theta = 0.5;     // Barnes-Hut opening angle (SPEC 8)
+    double accel_eps = 0.2; // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)
+    TimeStepping timesteps = TimeStepping::global; // one global dt, or power-of-two rungs
+    bool no_timestep_limiter = false;       // testing: block steps without the neighbour limiter
+    int gravity_leaf_size = 16;             // gravity-tree leaf size: one interaction list per leaf
+    double stir_mach = -1.0;                // --stir-mach; < 0: the case's (0: no stirring)
+    int stir_seed = 1;                      // --stir-seed: the stirring's random sequence
     SdcPolicy on_sdc = SdcPolicy::rollback; // silent data corruption
     int sdc_rollback_every = 10;            // steps between rollback points
     // Disk by default: the copy in memory would add ~112 B to the ~300 B a particle needs.

@@ -53,7 +53,7 @@ using ParamMember =
     std::variant<double Config::*, int Config::*, std::int64_t Config::*, bool Config::*,
                  std::string Config::*, std::vector<std::string> Config::*, CurveKind Config::*,
                  Scheme Config::*, SdcPolicy Config::*, RollbackStore Config::*,
-                 BackendChoice Config::*, CustomValue>;
+                 BackendChoice Config::*, TimeStepping Config::*, CustomValue>;
 
 // One run parameter, declared once: the command line, --help, the restart rule, the checkpoint
 // attributes and the run header are all generated from kParameters.
@@ -165,6 +165,15 @@ inline const std::array kParameters{
           &Config::theta, in_range(0.05, 0.95)},
     Param{"--accel-eps", "accel_eps", "Gravity: time step at most sqrt(eps h / |a|) per particle",
           "", OnRestart::kept, &Config::accel_eps, in_range(1e-6, 10)},
+    Param{"--timesteps", "timesteps", "Time stepping: global (every particle advances with the "
+          "smallest step, SPEC 7's Press and Adams-Bashforth scheme) or block (each particle on "
+          "its own power-of-two rung dt_max / 2^k, up to 2^24 rungs apart, kick-drift-kick "
+          "leapfrog; only active particles are searched and computed; a limiter keeps "
+          "neighbours within 2 rungs and wakes inactive particles, Saitoh & Makino 2009)",
+          "", OnRestart::kept, &Config::timesteps},
+    Param{"--no-timestep-limiter", "no_timestep_limiter", "Testing: block time steps without "
+          "the neighbour limiter, to show the failure it prevents (a shock entering cold gas "
+          "on long steps)", "", OnRestart::kept, &Config::no_timestep_limiter},
     Param{"--gravity-leaf-size", "gravity_leaf_size", "Gravity tree leaf size: one interaction "
           "list per leaf (particles)", "", OnRestart::kept, &Config::gravity_leaf_size,
           in_range(1, 4096)},

@@ -107,6 +107,12 @@ class Domain {
                              coll_.comm(), kTagHalo);
     }
 
+    // Block time steps: each halo's value of v (owned, then halos) goes back to its owner, which
+    // keeps the largest (return_halo_max).
+    void return_halo_max(std::vector<int>& v) {
+        exasph::return_halo_max(v, n_owned_, plan_, coll_.comm(), kTagHaloReturn);
+    }
+
     std::size_t n_owned() const {
         return n_owned_;
     }
@@ -171,6 +177,7 @@ class Domain {
     static constexpr int kTagMigrate = 7101;
     static constexpr int kTagHaloCount = 7102;
     static constexpr int kTagHalo = 7103;
+    static constexpr int kTagHaloReturn = 7104;
 
     std::vector<std::uint64_t> compute_keys(const ParticleSet<T>& ps, const Box<T>& box) const {
         std::vector<std::uint64_t> keys(n_owned_);

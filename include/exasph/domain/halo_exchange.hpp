@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -68,6 +69,36 @@ void exchange_halo_fields(ParticleSet<T>& ps, std::size_t n_owned, const HaloPla
         if (plan.recv_count[k] > 0)
             unpack_particles(ps, n_owned + plan.recv_offset[k], plan.recv_count[k], sel,
                              recv[k].data());
+}
+
+// The reverse of a halo exchange: every halo's value in v[n_owned, n_owned + n_halo) goes back
+// to its owner, which keeps the largest of its own and those that come back (a particle may be a
+// halo on several ranks). Block time steps: the limiter's bound on a neighbour's rung.
+inline void return_halo_max(std::vector<int>& v, std::size_t n_owned, const HaloPlan& plan,
+                            MPI_Comm comm, int tag) {
+    const std::size_t np = plan.partners.size();
+    std::vector<std::vector<int>> recv(np);
+    std::vector<MPI_Request> reqs;
+    reqs.reserve(2 * np);
+    for (std::size_t k = 0; k < np; ++k) {
+        if (plan.send[k].empty()) continue;
+        recv[k].resize(plan.send[k].size());
+        reqs.emplace_back();
+        MPI_Irecv(recv[k].data(), int(recv[k].size()), MPI_INT, plan.partners[k], tag, comm,
+                  &reqs.back());
+    }
+    for (std::size_t k = 0; k < np; ++k) {
+        if (plan.recv_count[k] == 0) continue;
+        reqs.emplace_back();
+        MPI_Isend(v.data() + n_owned + plan.recv_offset[k], int(plan.recv_count[k]), MPI_INT,
+                  plan.partners[k], tag, comm, &reqs.back());
+    }
+    MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
+    for (std::size_t k = 0; k < np; ++k)
+        for (std::size_t j = 0; j < recv[k].size(); ++j) {
+            int& own = v[plan.send[k][j]];
+            own = std::max(own, recv[k][j]);
+        }
 }
 
 } // namespace exasph

@@ -72,7 +72,7 @@ bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me,
 #pragma omp parallel for schedule(static) reduction(+ : leaving)
     for (std::size_t i = 0; i < dest.size(); ++i) leaving += dest[i] != me;
     if (leaving == 0 && expected == dest.size()) return false; // the common case on one rank
-    FieldSelection sel{ps.fields(kState), true};
+    FieldSelection sel{ps.fields(ps.carried()), true};
     const std::size_t per = sel.doubles_per_particle();
     std::vector<std::vector<std::uint32_t>> out(nranks);
     std::vector<std::uint32_t> keep;

@@ -48,6 +48,11 @@ std::vector<std::uint64_t> sort_by_keys(ParticleSet<T>& ps, std::vector<std::uin
         return a.key != b.key ? a.key < b.key : id[a.index] < id[b.index];
     };
     const std::size_t n = keys.size();
+    bool sorted = true; // the common case between two steps: nobody changed place
+#pragma omp parallel for schedule(static) reduction(&& : sorted)
+    for (std::size_t i = 1; i < n; ++i)
+        sorted = sorted && (keys[i - 1] != keys[i] ? keys[i - 1] < keys[i] : id[i - 1] < id[i]);
+    if (sorted) return keys;
     std::vector<std::uint32_t> order(n);
     {
         std::vector<Item> items(n);

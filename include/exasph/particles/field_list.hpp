@@ -68,6 +68,16 @@ enum class Field : std::uint8_t {
     e22,
     e23,
     e33,
+    // Block time steps (--timesteps block, sim/block_clock.hpp): the particle's rung k (its step
+    // is dt_max / 2^k), its velocity and internal energy kicked to the middle of its step (the
+    // leapfrog's v_{1/2}, u_{1/2}; v and u then hold the values predicted to the current time),
+    // and its own time-step limit from this step's forces.
+    rung,
+    vhx,
+    vhy,
+    vhz,
+    uh,
+    dtc,
     count_ // number of fields (not a field)
 };
 
@@ -152,6 +162,12 @@ inline constexpr std::array<FieldInfo, kNumFields> kFieldTable{{
     {Field::e22,      "strain_yy", "1/time",     kDerived | kHaloGrad | kOptional, "strain rate (dvy/dy)"},
     {Field::e23,      "strain_yz", "1/time",     kDerived | kHaloGrad | kOptional, "strain rate (dvy/dz + dvz/dy)/2"},
     {Field::e33,      "strain_zz", "1/time",     kDerived | kHaloGrad | kOptional, "strain rate (dvz/dz)"},
+    {Field::rung,     "rung",     "1",           kState | kHaloSync | kSnapshot | kOptional, "time-step rung k: dt = dt_max / 2^k (block time steps)"},
+    {Field::vhx,      "vhx",      "length/time", kState | kOptional, "velocity x at the middle of the particle's step (block time steps)"},
+    {Field::vhy,      "vhy",      "length/time", kState | kOptional, "velocity y at the middle of the particle's step (block time steps)"},
+    {Field::vhz,      "vhz",      "length/time", kState | kOptional, "velocity z at the middle of the particle's step (block time steps)"},
+    {Field::uh,       "uh",       "energy/mass", kState | kOptional, "internal energy at the middle of the particle's step (block time steps)"},
+    {Field::dtc,      "dt_own",   "time",        kDerived | kOptional, "the particle's own time-step limit (block time steps)"},
 }};
 // clang-format on
 

@@ -111,13 +111,26 @@ class ParticleSet {
             data(f)[i] = T(v);
     }
 
-    // Reorders all fields whose role matches `roles` (and the ids): new[i] = old[order[i]]; the
-    // set then has order.size() particles (a shorter order drops particles). Derived fields are
-    // recomputed every step: they are only resized.
-    void permute(const std::vector<std::uint32_t>& order, std::uint8_t roles = kState) {
+    // The fields that move with a particle when the domain sorts or migrates it: the state, and
+    // with block time steps (carry(kState | kDerived)) the derived fields too, since an inactive
+    // particle's density, pressure, IAD matrix and forces of an earlier sub-step are read by its
+    // active neighbours (sim/block_clock.hpp).
+    std::uint8_t carried() const { return carried_; }
+    void carry(std::uint8_t roles) { carried_ = roles; }
+
+    // Reorders the carried fields (and the ids): new[i] = old[order[i]]; the set then has
+    // order.size() particles (a shorter order drops particles). The other fields are recomputed
+    // before they are read: they are only resized.
+    void permute(const std::vector<std::uint32_t>& order) {
         FieldArray<T> scratch(order.size());
-        for (Field fld : fields(roles)) {
-            if (is_narrow(fld)) throw Error("particle set: narrow fields are never permuted");
+        FieldArray<float> narrow_scratch;
+        for (Field fld : fields(carried_)) {
+            if (stored_single(fld)) {
+                auto& f = narrow_[static_cast<std::size_t>(fld)];
+                gather(f, order, narrow_scratch);
+                f.swap(narrow_scratch);
+                continue;
+            }
             auto& f = (*this)[fld];
             gather(f, order, scratch);
             f.swap(scratch);
@@ -174,6 +187,7 @@ class ParticleSet {
     std::array<FieldArray<float>, kNumFields> narrow_; // the is_narrow fields when single
     std::array<bool, kNumFields> optional_on_{};
     bool narrow_single_ = true;
+    std::uint8_t carried_ = kState;
 };
 
 } // namespace exasph

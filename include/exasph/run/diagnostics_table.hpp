@@ -17,6 +17,10 @@ inline std::vector<CsvColumn> diagnostics_columns() {
     for (const char* name : {"ekin", "eint", "epot", "etot", "px", "py", "pz", "lx", "ly", "lz",
                              "nc_min", "nc_mean", "nc_max", "rho_max", "l1_rho", "e_stir"})
         c.push_back({name});
+    // the particles with forces this step (all, or the active ones with block time steps), the
+    // pair terms of one neighbour pass over them, and the shortest rung in use (block steps)
+    for (const char* name : {"active", "pairs", "rung_max"})
+        c.push_back({name, CsvFormat::integer});
     for (auto name : kPhaseNames) c.push_back({"t_" + std::string(name), CsvFormat::timing});
     return c;
 }
@@ -28,7 +32,8 @@ inline std::vector<double> diagnostics_row(const Diagnostics& d,
                             d.ekin, d.eint, d.epot, d.etot,
                             d.momentum[0], d.momentum[1], d.momentum[2],
                             d.angular_momentum[0], d.angular_momentum[1], d.angular_momentum[2],
-                            d.nc_min, d.nc_mean, d.nc_max, d.rho_max, d.l1_rho, d.e_stir};
+                            d.nc_min, d.nc_mean, d.nc_max, d.rho_max, d.l1_rho, d.e_stir,
+                            d.active, d.pairs, d.rung_max};
     // clang-format on
     row.insert(row.end(), phases.begin(), phases.end());
     return row;

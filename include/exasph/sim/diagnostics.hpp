@@ -35,6 +35,9 @@ struct Diagnostics {
     // Driven turbulence: sum_a m_a v_a . a_stir,a (the stirring's power) and the energy it has
     // put in since the start of the run (etot - e_stir is conserved).
     double stir_power = 0, e_stir = 0;
+    // The particles with forces this step and the pair terms of one neighbour pass over them
+    // (all particles with global steps; the active ones with block steps); the shortest rung.
+    double active = 0, pairs = 0, rung_max = 0;
 };
 
 // Layout of the diagnostics reduction: SumMax elements 0..18 below, then six for the extent of

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <limits>
 #include <optional>
 #include <string>
 
@@ -13,11 +12,14 @@
 #include "exasph/io/output_state.hpp"
 #include "exasph/io/restart_state.hpp"
 #include "exasph/kernel/sinc_kernel.hpp"
+#include "exasph/sim/block_clock.hpp"
 #include "exasph/sim/control_flags.hpp"
 #include "exasph/sim/diagnostics.hpp"
-#include "exasph/sim/eos_requirements.hpp"
+#include "exasph/sim/global_step.hpp"
+#include "exasph/sim/hydro_forces.hpp"
 #include "exasph/sim/initial_potential.hpp"
 #include "exasph/sim/phases.hpp"
+#include "exasph/sim/run_fields.hpp"
 #include "exasph/sim/safety.hpp"
 #include "exasph/sim/stirring.hpp"
 #include "exasph/sph/passes.hpp"
@@ -43,8 +45,11 @@ class Simulation {
           kernel_(sinc_kernel(cfg.kernel_exponent)), nlists_(std::uint32_t(cfg.ngmax)),
           domain_(comm, std::uint32_t(cfg.global_bucket), std::uint32_t(cfg.leaf_size), cfg.curve),
           safety_(cfg, domain_.rank()), dt_m1_(ic.dt0), dt0_(ic.dt0), exact_(std::move(ic.exact)) {
-        enable_fields();
-        start_gravity(cfg.G >= 0 ? cfg.G : ic.G);
+        enable_run_fields(ps_, cfg, eos_, domain_.collectives());
+        start_gravity(gravity_, ps_, box_, kernel_, cfg, cfg.G >= 0 ? cfg.G : ic.G);
+        if (cfg.timesteps == TimeStepping::block) // the case's stirring when not given
+            blocks_.emplace(ps_, cfg, kBlockCapable, bool(gravity_),
+                            cfg.stir_mach < 0 ? ic.stir_mach > 0 : cfg.stir_mach > 0);
         restart ? resume(*restart) : start();
         diagnose(0.0);
         stirring_ =
@@ -53,7 +58,10 @@ class Simulation {
         if (stirring_) ps_.enable(Field::stir), diag_.e_stir = stirring_->state().energy_in;
         if (stirring_ && L::kBackend == Backend::cuda) // its modes are in host memory
             throw input_error("driven turbulence (--stir-mach) needs --backend cpu", true);
-        if (gravity_) add_initial_potential_energy(comm);
+        if (gravity_) { // the first row's E_pot, of the initial positions
+            diag_.epot = initial_potential_energy(ps_, n_owned(), box_, cfg_, *gravity_, comm);
+            diag_.etot = diag_.ekin + diag_.eint + diag_.epot;
+        }
         mass0_ = diag_.mass;
         safety_.seal(ps_, n_owned());
         timer_.observe([this](std::size_t p) {
@@ -70,8 +78,10 @@ class Simulation {
                                                       eos_.kind == EosKind::ideal_gas);
         if (domain_.count_particles(ps_, box_, corrupt))
             return roll_back("the state check before step " + std::to_string(step_ + 1), step_ + 1);
-        if (safety_.point_due(step_)) safety_.keep_point(ps_, n_owned(), run_point());
+        if (safety_.point_due(step_) && (!blocks_ || blocks_->at_boundary()))
+            safety_.keep_point(ps_, n_owned(), run_point());
         domain_.distribute(ps_, box_);
+        if (blocks_) blocks_->select(ps_, n_owned());
         timer_.stop(kSync);
         find_neighbours();
         timer_.stop(kNeighbours);
@@ -105,25 +115,19 @@ class Simulation {
     // Raises a control flag on this rank; after the next step every rank sees it (flag()).
     void raise_flag(ControlFlag f) { flags_.raise(f); }
     bool flag(ControlFlag f) const { return flags_[f]; }
-
     RestartState restart_state() const {
-        return {time_, step_, dt_m1_, domain_.global_tree().keys(),
-                stirring_ ? stirring_->state() : StirState{}};
+        return {time_, step_, blocks_ ? blocks_->last_block() : dt_m1_,
+                domain_.global_tree().keys(), stirring_ ? stirring_->state() : StirState{}};
     }
     // What snapshots and checkpoints read (io/output_state.hpp).
     OutputState<T> output_state() const {
         return {ps_, n_owned(), box_, eos_, restart_state(), diag_.dt, dt0_};
     }
     const EosParams& eos() const { return eos_; }
-    // Gravitational constant of the run (0: no self-gravity).
-    double gravitational_constant() const { return gravity_ ? gravity_->G() : 0.0; }
-    // Target Mach number of the stirring (0: none).
-    double stir_mach() const { return stirring_ ? stirring_->mach() : 0.0; }
+    double gravitational_constant() const { return gravity_ ? gravity_->G() : 0.0; } // 0: none
+    double stir_mach() const { return stirring_ ? stirring_->mach() : 0.0; } // 0: no stirring
     double dt0() const { return dt0_; }
-
-    // Steps are shortened so that the run ends exactly at t_end.
-    void set_end_time(double t_end) { t_end_ = t_end; }
-
+    void set_end_time(double t_end) { t_end_ = t_end; } // the last step ends exactly at t_end
     const Diagnostics& diagnostics() const { return diag_; }
     // Owned particles are [0, n_owned()); halos (if any) follow.
     const ParticleSet<T>& particles() const { return ps_; }
@@ -135,6 +139,8 @@ class Simulation {
     const Box<T>& box() const { return box_; }
     double time() const { return time_; }
     std::int64_t step_count() const { return step_; }
+    // Block time steps: whether every particle is synchronised (a block's end; checkpoints).
+    bool at_sync_point() const { return !blocks_ || blocks_->at_boundary(); }
     // Longest neighbour list of the last step on this rank (symmetric criterion).
     std::uint32_t max_list_length() const { return max_list_; }
     // Owned particles of the most loaded rank over the mean (from the last sync).
@@ -143,24 +149,14 @@ class Simulation {
     const std::array<double, kNumPhases>& total_phase_times() const { return timer_.total_times(); }
 
   private:
-    // Optional fields, allocated only for the options that use them.
-    void enable_fields() {
-        ps_.validate();
-        if (cfg_.av_limiter) ps_.enable(kHaloGrad); // the strain rate (24 B/particle)
-        if (cfg_.av_switch) ps_.enable(Field::alpha), ps_.enable(Field::divv);
-        if (cfg_.volume_elements) ps_.enable(Field::xm), ps_.enable(Field::kx);
-        ps_.set_narrow_single(!cfg_.double_precision); // --double-precision
-        require_eos_inputs(ps_, ps_.size(), eos_, cfg_.energy_weights, domain_.collectives());
-    }
-
-    void start_gravity(double G) {
-        if (!(G > 0)) return;
-        if (box_.any_periodic())
-            throw input_error("self-gravity needs an open box: periodic gravity (Ewald "
-                              "summation) is not implemented; run with --G 0",
-                              true);
-        gravity_.emplace(kernel_, G, cfg_.theta, std::uint32_t(cfg_.gravity_leaf_size));
-        ps_.enable(Field::phi), ps_.enable(Field::gsoft);
+    // Block time steps keep each particle's own Courant limit (Field::dtc) for its rung.
+    auto own_limits_if_blocks() {
+        if constexpr (kBlockCapable)
+            return [dtc = blocks_ ? ps_.data(Field::dtc) : nullptr](auto kern) {
+                return StoreResultKernel<decltype(kern), T>{kern, dtc};
+            };
+        else
+            return AsIs{};
     }
 
     void start() {
@@ -174,6 +170,7 @@ class Simulation {
         time_ = rs.time;
         step_ = rs.step;
         dt_m1_ = rs.dt_m1;
+        if (blocks_) blocks_->resume(rs.dt_m1);
         domain_.restore(ps_, rs.leaf_keys);
         if (stirring_) stirring_->restore(rs.stir);
     }
@@ -181,71 +178,66 @@ class Simulation {
     void find_neighbours() {
         SearchView<T> sv{ps_.data(Field::x), ps_.data(Field::y), ps_.data(Field::z),
                          ps_.data(Field::h)};
-        auto res = nlists_.build(domain_.local_tree(), &domain_.halo_tree(), sv, box_,
-                                 NeighbourCriterion::symmetric, std::uint32_t(n_owned()));
+        typename L::template Lists<T>::Result res;
+        if constexpr (kBlockCapable)
+            res = nlists_.build(domain_.local_tree(), &domain_.halo_tree(), sv, box_,
+                                NeighbourCriterion::symmetric, std::uint32_t(n_owned()),
+                                blocks_ ? blocks_->active() : nullptr);
+        else
+            res = nlists_.build(domain_.local_tree(), &domain_.halo_tree(), sv, box_,
+                                NeighbourCriterion::symmetric, std::uint32_t(n_owned()));
         max_list_ = res.max_count;
+        active_ = blocks_ ? blocks_->active_list().size() : n_owned();
+        if constexpr (requires { res.pairs; }) pairs_ = res.pairs;
     }
 
-    // SPEC 3-6: density and EOS (Tait: rho0 from the first step), IAD, momentum and energy.
+    // SPEC 3-6 (sim/hydro_forces.hpp).
     void hydro_forces() {
-        const auto k = kernel_.view();
-        if (step_ == 0 && cfg_.volume_elements)
-            settle_volume_weights<L>(ps_, nlists_, box_, k, eos_, n_owned(), cfg_.energy_weights,
-                                     [&] { domain_.exchange_halos(ps_, kHaloSync); });
-        compute_density<L>(ps_, nlists_, box_, k, eos_, step_ == 0 && eos_.kind == EosKind::tait);
-        if (gravity_)
-            compute_softening_zeta<L>(ps_, nlists_, gravity_->softening().view(), gravity_->G());
-        timer_.stop(kDensity);
-        domain_.exchange_halos(ps_, kHaloDensity);
-        timer_.stop(kDensityHalos);
-        const auto diss = Dissipation<T>::of(cfg_.alpha, cfg_.conductivity, cfg_.av_limiter,
-                                             cfg_.ng0, cfg_.tensile_stress, cfg_.torque_free,
-                                             cfg_.tensile_exponent, cfg_.tensile_stress_positive);
-        compute_iad<L>(ps_, nlists_, box_, k, cfg_.av_limiter, cfg_.torque_free, diss);
-        domain_.exchange_halos(ps_, cfg_.av_limiter ? kHaloIad | kHaloGrad : kHaloIad);
-        timer_.stop(kIad);
-        courant_dt_ = compute_momentum_energy<L>(ps_, nlists_, box_, k, diss, T(cfg_.courant));
-        if (gravity_) add_softening_correction<L>(ps_, nlists_, k); // SPEC 8's softening
-        nlists_.release(); // not needed again this step: the sync can use their memory
+        courant_dt_ = exasph::hydro_forces<L>(ps_, nlists_, box_, kernel_.view(), eos_, cfg_,
+                                              domain_, gravity_ ? &*gravity_ : nullptr, timer_,
+                                              step_ == 0, own_limits_if_blocks());
+        if (!blocks_) nlists_.release(); // the sync can use their memory
         timer_.stop(kMomentumEnergy);
     }
 
-    // SPEC 7: Courant limit (from the momentum-energy pass; with gravity also the acceleration
-    // limit), at most 1.1 x the previous step; the first step is the case's dt0 (or less).
+    // SPEC 7 (sim/global_step.hpp), or the rungs of block time steps (sim/block_clock.hpp).
     double choose_time_step() {
-        double dt_min = std::min(courant_dt_, std::numeric_limits<double>::max());
-        if (gravity_ && cfg_.accel_eps > 0)
-            dt_min =
-                std::min(dt_min, acceleration_time_step_min<L>(ps_, n_owned(), cfg_.accel_eps));
-        dt_min = domain_.collectives().allreduce_min(dt_min);
-        double dt = step_ == 0 ? std::min(dt0_, dt_min) : limit_time_step(dt_min, dt_m1_);
-        if (t_end_ > 0 && time_ + dt > t_end_) dt = std::max(t_end_ - time_, 0.0);
-        return dt;
+        const double accel = gravity_ ? cfg_.accel_eps : 0.0;
+        if constexpr (kBlockCapable)
+            if (blocks_) { // closing and opening the steps updates the state: check it first
+                if (safety_.changed_before_update(ps_, n_owned())) flags_.raise(kStateChanged);
+                const double dt = blocks_->choose(ps_, n_owned(), nlists_, domain_,
+                                                  {step_ == 0, dt0_, accel, time_, t_end_});
+                nlists_.release();
+                return dt;
+            }
+        return global_time_step<L>(ps_, n_owned(), courant_dt_, accel, domain_.collectives(),
+                                   step_ == 0, dt0_, dt_m1_, time_, t_end_);
     }
 
-    // SPEC 7 and 2: the state, the AV switch, h and the volume weights move to the next step
-    // (their inputs checked against the step's seals first, sim/step_seals.hpp).
+    // SPEC 7 and 2: the state, the AV switch, h and X move on (inputs checked against the step's
+    // seals first); block time steps drift every particle, the rest only for the active ones.
     void advance(double dt) {
-        if (safety_.changed_before_update(ps_, n_owned())) flags_.raise(kStateChanged);
-        update_state<L>(ps_, n_owned(), box_, dt, dt_m1_);
-        if (cfg_.av_switch) update_viscosity<L>(ps_, n_owned(), dt, cfg_.alpha_min, cfg_.alpha);
+        if (!blocks_ && safety_.changed_before_update(ps_, n_owned())) flags_.raise(kStateChanged);
+        const ParticleRange own = blocks_ ? blocks_->active_range() : ParticleRange(n_owned());
+        double t_next = time_ + dt;
+        if constexpr (kBlockCapable)
+            if (blocks_) t_next = blocks_->drift_to_next(ps_, n_owned(), box_);
+        if (!blocks_) update_state<L>(ps_, n_owned(), box_, dt, dt_m1_);
+        if (cfg_.av_switch)
+            update_viscosity<L>(ps_, own, blocks_ ? -1.0 : dt, cfg_.alpha_min, cfg_.alpha);
         timer_.stop(kUpdate);
         if (safety_.changed_before_h_update(ps_, n_owned())) flags_.raise(kStateChanged);
-        update_smoothing_lengths<L>(ps_, n_owned(), cfg_.ng0);
-        if (cfg_.volume_elements) update_volume_weights<L>(ps_, n_owned(), cfg_.energy_weights);
+        update_smoothing_lengths<L>(ps_, own, cfg_.ng0);
+        if (cfg_.volume_elements) update_volume_weights<L>(ps_, own, cfg_.energy_weights);
         if (stirring_) stirring_->advance(step_, dt);
         timer_.stop(kSmoothingLength);
-        time_ += dt;
+        time_ = t_next;
         dt_m1_ = dt;
         ++step_;
     }
 
     RunPoint<T> run_point() const { return {restart_state(), box_, diag_}; }
-    // The first row's E_pot, of the initial positions (sim/initial_potential.hpp).
-    void add_initial_potential_energy(MPI_Comm comm) {
-        diag_.epot = initial_potential_energy(ps_, n_owned(), box_, cfg_, *gravity_, comm);
-        diag_.etot = diag_.ekin + diag_.eint + diag_.epot;
-    }
 
     // All ranks, after a detection by `where` in step `step`: back to the last verified state.
     void roll_back(const std::string& where, std::int64_t step) {
@@ -260,7 +252,10 @@ class Simulation {
 
     // SPEC 10 sums, run-control flags and the particles' extent (next box): one collective.
     void diagnose(double dt) {
-        std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags);
+        std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags + 2);
+        SumMax* work = e.data() + kDiagWithExtent + kNumControlFlags;
+        work[0] = {double(active_), blocks_ ? blocks_->max_rung(ps_, n_owned()) : 0.0};
+        work[1].sum = double(pairs_);
         local_diagnostics(ps_, n_owned(), domain_.n_halo(), exact_, time_ - dt, cfg_.ng0, e.data());
         Domain<T>::local_extent(ps_, n_owned(), e.data() + kDiagElements);
         flags_.pack(e.data() + kDiagWithExtent);
@@ -268,6 +263,7 @@ class Simulation {
         flags_.unpack(e.data() + kDiagWithExtent);
         diag_ = diagnostics_from(e.data(), domain_.nranks());
         if (exact_.valid() && step_ > 0) diag_.l1_rho = e[11].sum / double(diag_.n);
+        diag_.active = work[0].sum, diag_.rung_max = work[0].max, diag_.pairs = work[1].sum;
         diag_.step = step_;
         diag_.time = time_;
         diag_.dt = dt;
@@ -295,6 +291,10 @@ class Simulation {
     ExactDensity exact_;
     std::optional<GravitySolver<T>> gravity_;
     std::optional<Stirring> stirring_;
+    static constexpr bool kBlockCapable = L::kBackend == Backend::openmp;
+    std::optional<BlockClock<T, L>> blocks_; // --timesteps block
+    std::size_t active_ = 0;  // particles with forces this step (this rank) and the pair terms
+    std::uint64_t pairs_ = 0; // of one neighbour pass over them
 };
 
 } // namespace exasph

@@ -29,6 +29,23 @@ struct OmpParticleLoops {
         for (std::int64_t i = 0; i < nn; ++i) k(std::uint32_t(i));
     }
 
+    // The particles idx[0, n) (block time steps: the active ones).
+    template <class Kernel>
+    static void for_each_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
+        const auto nn = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+        for (std::int64_t s = 0; s < nn; ++s) k(idx[s]);
+    }
+
+    template <class Kernel>
+    static double reduce_min_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
+        const auto nn = static_cast<std::int64_t>(n);
+        double least = std::numeric_limits<double>::infinity();
+#pragma omp parallel for schedule(static) reduction(min : least)
+        for (std::int64_t s = 0; s < nn; ++s) least = std::min(least, double(k(idx[s])));
+        return least;
+    }
+
     template <class Kernel>
     static double reduce_min(std::size_t n, const Kernel& k) {
         const auto nn = static_cast<std::int64_t>(n);
@@ -64,11 +81,11 @@ struct OmpLauncher : OmpParticleLoops {
             for (std::int64_t g = 0; g < groups; ++g) {
                 dec.start(std::size_t(g));
                 const auto end = nl.group_end(std::size_t(g));
-                for (std::uint32_t i = nl.group_begin(std::size_t(g)); i < end; ++i) {
+                for (std::uint32_t s = nl.group_begin(std::size_t(g)); s < end; ++s) {
                     if constexpr (kReduces<Kernel>)
-                        least = std::min(least, double(k(i, dec.next())));
+                        least = std::min(least, double(k(nl.member(s), dec.next())));
                     else
-                        k(i, dec.next());
+                        k(nl.member(s), dec.next());
                 }
             }
         }

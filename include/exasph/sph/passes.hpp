@@ -19,6 +19,32 @@
 // particles that have lists (the owned ones, [0, nl.size())).
 namespace exasph {
 
+// The particles a particle-wise pass runs over: the first n, or the n listed in idx (block time
+// steps: the active ones; only launchers with subset loops run those).
+struct ParticleRange {
+    std::size_t n = 0;
+    const std::uint32_t* idx = nullptr;
+    ParticleRange(std::size_t count) : n(count) {} // NOLINT: a count converts implicitly
+    ParticleRange(const std::uint32_t* list, std::size_t count) : n(count), idx(list) {}
+};
+
+template <class L, class Kernel>
+void for_each_in(const ParticleRange& r, const Kernel& k) {
+    if (!r.idx) return L::for_each(r.n, k);
+    if constexpr (requires { L::for_each_of(r.idx, r.n, k); })
+        L::for_each_of(r.idx, r.n, k);
+    else
+        throw Error("this backend has no passes over a subset of the particles");
+}
+
+// A neighbour kernel as it is (the default of compute_momentum_energy's `wrap`).
+struct AsIs {
+    template <class K>
+    K operator()(K k) const {
+        return k;
+    }
+};
+
 // SPEC 3 and 4: density, EOS and the pressure-force coefficient (DensityEosKernel).
 template <class L = DefaultLauncher, class T, class Lists>
 void compute_density(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const KernelView<T>& k,
@@ -46,7 +72,7 @@ void compute_iad(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const K
         return L::for_each_neighbourhood(
             nl, IadKernel<T, N>{p, box, k, with_gradient, own_k, stress_inv_w0, stress_exponent});
     });
-    if (first < double(nl.size())) {
+    if (first < 1e300) { // IadKernel returns the index of a singular particle, else 1e300
         const auto i = std::uint32_t(first);
         const bool with_stress = stress_inv_w0 > T(0);
         throw Error(std::string(with_stress ? "IAD matrix tau or the artificial stress's tau'"
@@ -60,15 +86,17 @@ void compute_iad(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const K
 
 // SPEC 6; returns the Courant time step of SPEC 7 (min over the particles). One instantiation of
 // the pair loop per combination of options, chosen once per pass.
-template <class L = DefaultLauncher, class T, class Lists>
+// `wrap` may wrap the kernel (block time steps: StoreResultKernel keeps each particle's limit).
+template <class L = DefaultLauncher, class T, class Lists, class Wrap = AsIs>
 double compute_momentum_energy(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box,
                                const KernelView<T>& k, const Dissipation<T>& diss = {},
-                               T courant = T(0.2)) {
+                               T courant = T(0.2), Wrap wrap = {}) {
     return with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
         auto pass = [&](auto extras, auto alpha, auto ve) {
             return L::for_each_neighbourhood(
-                nl, MomentumEnergyKernel<T, extras(), alpha(), ve(), N>{p, box, k, diss, courant});
+                nl, wrap(MomentumEnergyKernel<T, extras(), alpha(), ve(), N>{p, box, k, diss,
+                                                                             courant}));
         };
         auto with_ve = [&](auto extras, auto alpha) {
             return p[Field::kx] ? pass(extras, alpha, std::true_type{})
@@ -113,20 +141,23 @@ void update_state(ParticleSet<T>& ps, std::size_t n, const Box<T>& box, double d
 
 // SPEC 2 (SmoothingLengthKernel).
 template <class L = DefaultLauncher, class T>
-void update_smoothing_lengths(ParticleSet<T>& ps, std::size_t n, double ng0) {
+void update_smoothing_lengths(ParticleSet<T>& ps, const ParticleRange& r, double ng0) {
     with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
-        L::for_each(n, SmoothingLengthKernel<T, N>{p, T(ng0)});
+        for_each_in<L>(r, SmoothingLengthKernel<T, N>{p, T(ng0)});
     });
 }
 
-// The AV switch (ViscosityKernel), alpha between alpha_min and alpha_max.
+// The AV switch (ViscosityKernel), alpha between alpha_min and alpha_max; dt < 0: each
+// particle's own step (Field::dtc, block time steps).
 template <class L = DefaultLauncher, class T>
-void update_viscosity(ParticleSet<T>& ps, std::size_t n, double dt, double alpha_min,
+void update_viscosity(ParticleSet<T>& ps, const ParticleRange& r, double dt, double alpha_min,
                       double alpha_max) {
     with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
-        L::for_each(n, ViscosityKernel<T, N>{p, T(dt), T(alpha_min), T(alpha_max), T(kAlphaDecay)});
+        const T* own = dt < 0 ? p[Field::dtc] : nullptr;
+        for_each_in<L>(
+            r, ViscosityKernel<T, N>{p, T(dt), T(alpha_min), T(alpha_max), T(kAlphaDecay), own});
     });
 }
 
@@ -140,9 +171,9 @@ void add_stirring(ParticleSet<T>& ps, std::size_t n, const StirModes& modes) {
 
 // Volume elements for the next step (VolumeWeightKernel; `energy`: X = m u).
 template <class L = DefaultLauncher, class T>
-void update_volume_weights(ParticleSet<T>& ps, std::size_t n, bool energy) {
+void update_volume_weights(ParticleSet<T>& ps, const ParticleRange& r, bool energy) {
     with_view(ps, [&](auto p) {
-        L::for_each(n, VolumeWeightKernel<T, typename decltype(p)::narrow_type>{p, energy});
+        for_each_in<L>(r, VolumeWeightKernel<T, typename decltype(p)::narrow_type>{p, energy});
     });
 }
 

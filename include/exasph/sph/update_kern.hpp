@@ -56,11 +56,13 @@ template <class T, class N = float>
 struct ViscosityKernel {
     ParticleView<T, N> p;
     T dt, alpha_min, alpha_max, decay;
+    const T* own_dt = nullptr; // block time steps: each particle's own step (Field::dtc)
 
     EXASPH_HD void operator()(std::uint32_t i) const {
         T* alpha = p[Field::alpha];
-        alpha[i] = evolve_alpha(alpha[i], p[Field::divv][i], p[Field::h][i],
-                                T(p.narrow(Field::c)[i]), dt, alpha_min, alpha_max, decay);
+        alpha[i] =
+            evolve_alpha(alpha[i], p[Field::divv][i], p[Field::h][i], T(p.narrow(Field::c)[i]),
+                         own_dt ? own_dt[i] : dt, alpha_min, alpha_max, decay);
     }
 };
 

@@ -42,16 +42,20 @@ class NeighbourLists {
     struct Result {
         std::uint32_t max_count = 0; // longest list
         bool exceeded = false;       // max_count > ngmax
+        std::uint64_t pairs = 0;     // sum of the list lengths: the pair terms of one pass
     };
 
+    // `active` (block time steps): only the owned particles i with active[i] != 0 get lists
+    // (nullptr: all of them).
     Result build(const Octree<T>& owned, const Octree<T>* halos, const SearchView<T>& p,
-                 const Box<T>& box, NeighbourCriterion crit, std::uint32_t n_owned) {
+                 const Box<T>& box, NeighbourCriterion crit, std::uint32_t n_owned,
+                 const std::uint8_t* active = nullptr) {
         T hmax = owned.empty() ? T(0) : owned.nodes()[0].hmax;
         if (halos && !halos->empty()) hmax = std::max(hmax, halos->nodes()[0].hmax);
         check_periodic_reach(box, hmax);
-        set_groups(owned, n_owned);
+        set_groups(owned, n_owned, active);
         max_count_ = search_all(owned, halos, p, box, crit);
-        return {max_count_, max_count_ > ngmax_};
+        return {max_count_, max_count_ > ngmax_, pairs_};
     }
 
     // Without halos (one rank, or tests).
@@ -60,11 +64,14 @@ class NeighbourLists {
         return build(tree, nullptr, p, box, crit, n);
     }
 
-    // Particles with lists: [0, size()), in groups [group_begin(g), group_end(g)).
+    // Slots [0, size()), in groups [group_begin(g), group_end(g)); slot s holds the list of
+    // particle member(s) (s itself unless the lists are of an active subset).
     std::size_t size() const { return group_first_.empty() ? 0 : group_first_.back(); }
     std::size_t num_groups() const { return records_.size(); }
     std::uint32_t group_begin(std::size_t g) const { return group_first_[g]; }
     std::uint32_t group_end(std::size_t g) const { return group_first_[g + 1]; }
+    std::uint32_t member(std::uint32_t s) const { return members_.empty() ? s : members_[s]; }
+    std::uint64_t pairs() const { return pairs_; }
     std::uint32_t max_count() const { return max_count_; }
     // Bytes held by the lists (records and group tables).
     std::size_t bytes() const {
@@ -133,39 +140,60 @@ class NeighbourLists {
         for (auto& a : arenas_) a.release();
         records_.clear();
         group_first_.clear();
+        std::vector<std::uint32_t>().swap(members_);
     }
 
-    // The list of particle i (tests, error messages: decodes its group up to i).
+    // The list of particle i (tests, error messages: decodes its group up to i's slot).
     std::vector<std::uint32_t> list(std::uint32_t i) const {
-        const auto g = std::size_t(std::upper_bound(group_first_.begin(), group_first_.end(), i) -
-                                   group_first_.begin() - 1);
+        std::uint32_t slot = i;
+        if (!members_.empty()) {
+            const auto it = std::lower_bound(members_.begin(), members_.end(), i);
+            if (it == members_.end() || *it != i) return {};
+            slot = std::uint32_t(it - members_.begin());
+        }
+        const auto g =
+            std::size_t(std::upper_bound(group_first_.begin(), group_first_.end(), slot) -
+                        group_first_.begin() - 1);
         Decoder dec(*this);
         dec.start(g);
-        for (std::uint32_t j = group_begin(g); j < i; ++j) dec.next();
+        for (std::uint32_t j = group_begin(g); j < slot; ++j) dec.next();
         NeighbourSpan s = dec.next();
         return {s.index, s.index + s.count};
     }
 
   private:
-    // The owned tree's leaves are the groups; they must tile [0, n_owned) in order.
-    void set_groups(const Octree<T>& owned, std::uint32_t n_owned) {
+    // The owned tree's leaves are the groups; they must tile [0, n_owned) in order. With an
+    // active subset, only the leaves holding active particles, and only those particles.
+    void set_groups(const Octree<T>& owned, std::uint32_t n_owned, const std::uint8_t* active) {
         const auto& leaves = owned.leaves();
         group_first_.assign(1, 0);
+        group_leaf_.clear();
+        members_.clear();
+        std::uint32_t end = 0;
         for (std::uint32_t l : leaves) {
             const auto& nd = owned.nodes()[l];
-            if (nd.begin != group_first_.back())
+            if (nd.begin != end)
                 throw std::logic_error("neighbour lists: the tree's leaves do not tile the "
                                        "particles");
-            group_first_.push_back(nd.end);
+            end = nd.end;
+            std::uint32_t count = nd.end - nd.begin;
+            if (active) {
+                count = 0;
+                for (std::uint32_t i = nd.begin; i < nd.end; ++i)
+                    if (active[i]) members_.push_back(i), ++count;
+                if (count == 0) continue;
+            }
+            group_leaf_.push_back(l);
+            group_first_.push_back(group_first_.back() + count);
         }
-        if (group_first_.back() != n_owned)
+        if (end != n_owned)
             throw std::logic_error("neighbour lists: the tree does not hold the owned particles");
-        records_.assign(leaves.size(), nullptr);
+        if (active && members_.size() == n_owned) members_.clear(); // all active: the identity
+        records_.assign(group_leaf_.size(), nullptr);
     }
 
     std::uint32_t search_all(const Octree<T>& owned, const Octree<T>* halos, const SearchView<T>& p,
                              const Box<T>& box, NeighbourCriterion crit) {
-        const auto& leaves = owned.leaves();
         const PeriodicImage<T> image(box);
         int threads = 1;
 #ifdef _OPENMP
@@ -174,8 +202,9 @@ class NeighbourLists {
         arenas_.resize(std::size_t(threads));
         for (auto& a : arenas_) a.reset();
         std::uint32_t max_count = 0;
+        std::uint64_t pairs = 0;
         bool out_of_order = false;
-#pragma omp parallel reduction(max : max_count) reduction(|| : out_of_order)
+#pragma omp parallel reduction(max : max_count) reduction(|| : out_of_order) reduction(+ : pairs)
         {
             int tid = 0;
 #ifdef _OPENMP
@@ -186,29 +215,35 @@ class NeighbourLists {
             CandidateBoxes<T> boxes;
             std::vector<std::uint8_t> rec;
 #pragma omp for schedule(dynamic, 4)
-            for (std::size_t l = 0; l < leaves.size(); ++l) {
-                const auto& group = owned.nodes()[leaves[l]];
+            for (std::size_t g = 0; g < group_leaf_.size(); ++g) {
+                const auto& group = owned.nodes()[group_leaf_[g]];
                 candidates.clear();
                 collect_leaves(owned, group, box, crit, candidates);
                 if (halos) collect_leaves(*halos, group, box, crit, candidates);
                 boxes.assign(candidates);
                 rec.clear();
                 out_of_order |= !encode_candidates(candidates, rec);
-                for (std::uint32_t i = group.begin; i < group.end; ++i) {
-                    std::uint32_t c = encode_neighbours(candidates, boxes, p, image, crit, i, rec);
+                for (std::uint32_t s = group_begin(g); s < group_end(g); ++s) {
+                    const std::uint32_t c =
+                        encode_neighbours(candidates, boxes, p, image, crit, member(s), rec);
                     max_count = std::max(max_count, c);
+                    pairs += c;
                 }
-                records_[l] = arena.store(rec);
+                records_[g] = arena.store(rec);
             }
         }
         if (out_of_order)
             throw std::logic_error("neighbour lists: candidate leaves out of particle order");
+        pairs_ = pairs;
         return max_count;
     }
 
     std::uint32_t ngmax_;
     std::uint32_t max_count_ = 0;
-    std::vector<std::uint32_t> group_first_;   // first particle of each group, then n_owned
+    std::uint64_t pairs_ = 0;
+    std::vector<std::uint32_t> group_first_;   // first slot of each group, then size()
+    std::vector<std::uint32_t> group_leaf_;    // the owned tree's leaf of each group
+    std::vector<std::uint32_t> members_;       // particle of each slot (empty: the identity)
     std::vector<const std::uint8_t*> records_; // one record per group
     std::vector<codec::Arena> arenas_;         // one per thread: the records' storage
 };

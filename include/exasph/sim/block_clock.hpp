@@ -1,0 +1,137 @@
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "exasph/config/config.hpp"
+#include "exasph/domain/domain.hpp"
+#include "exasph/particles/particle_set.hpp"
+#include "exasph/sph/block_passes.hpp"
+#include "exasph/sph/passes.hpp"
+#include "exasph/util/error.hpp"
+
+namespace exasph {
+
+// What BlockClock::choose needs to know of the run.
+struct BlockStepInputs {
+    bool first;         // the run's first step (nothing to close; steps at most dt0)
+    double dt0;         // the case's first step
+    double accel_eps;   // > 0 with gravity: the acceleration limit
+    double time, t_end; // t_end < 0: none
+};
+
+// Block time steps (--timesteps block): the hierarchy's clock and the sub-step's active set.
+// A block runs from t0 to end in 2^kMaxRung ticks; at its first tick every particle is active
+// and the block's length is chosen (the largest own step limit, at most 2^kMaxRung times the
+// smallest, and no further than t_end). A sub-step computes forces for the particles active at
+// this tick, closes and reopens their steps (with the limiter's wake-ups), then drifts everyone
+// to the next tick at which any particle is active. Checkpoints and rollback points are taken
+// at block boundaries (at_boundary()), where every particle's state is synchronised.
+template <class T, class L>
+class BlockClock {
+  public:
+    static constexpr double kTicks = double(std::int64_t(1) << kMaxRung);
+
+    // Refuses what block steps do not handle yet; allocates the rung and half-step fields and
+    // makes the derived fields move with the particles (inactive ones keep theirs).
+    BlockClock(ParticleSet<T>& ps, const Config& cfg, bool backend_ok, bool gravity, bool stir)
+        : limiter_(!cfg.no_timestep_limiter) {
+        if (!backend_ok || gravity || stir)
+            throw input_error(std::string("--timesteps block: not yet with ") +
+                                  (!backend_ok ? "--backend cuda (run with --backend cpu)"
+                                   : gravity   ? "self-gravity (run with --timesteps global)"
+                                               : "driven turbulence (--stir-mach)"),
+                              true);
+        for (Field f : {Field::rung, Field::vhx, Field::vhy, Field::vhz, Field::uh, Field::dtc})
+            ps.enable(f);
+        ps.carry(kState | kDerived);
+    }
+
+    // A restart or rollback to a block boundary; `last_block` is the length of the block that
+    // ended there (its steps are closed by the next sub-step).
+    void resume(double last_block) {
+        last_tick_dt_ = last_block / kTicks;
+        tick_ = 0;
+    }
+    bool at_boundary() const { return tick_ == 0; }
+    double last_block() const { return last_tick_dt_ * kTicks; }
+    std::int64_t tick() const { return tick_; }
+
+    // The owned particles active at this tick: flags and their list.
+    void select(const ParticleSet<T>& ps, std::size_t n) {
+        active_.assign(n, 0);
+        list_.clear();
+        const T* rung = ps.data(Field::rung);
+        for (std::uint32_t i = 0; i < n; ++i)
+            if (tick_ == 0 || on_rung_boundary(tick_, int(rung[i]))) active_[i] = 1;
+        for (std::uint32_t i = 0; i < n; ++i)
+            if (active_[i]) list_.push_back(i);
+    }
+    const std::uint8_t* active() const { return active_.data(); }
+    ParticleRange active_range() const { return {list_.data(), list_.size()}; }
+    static double max_rung(const ParticleSet<T>& ps, std::size_t n) {
+        const T* r = ps.data(Field::rung);
+        return n ? double(*std::max_element(r, r + n)) : 0.0;
+    }
+    const std::vector<std::uint32_t>& active_list() const { return list_; }
+
+    // After the forces (Field::dtc holds each active particle's Courant limit): closes the
+    // active particles' steps, chooses their rungs, applies the limiter (its bounds on halos go
+    // back to their owners) and opens the new steps. One collective (the next tick; one more
+    // at a block's start). Returns the length of the sub-step to the next tick.
+    template <class Lists>
+    double choose(ParticleSet<T>& ps, std::size_t n, const Lists& nl, Domain<T>& dom,
+                  const BlockStepInputs& in) {
+        const double last = tick_ == 0 ? last_tick_dt_ : tick_dt_; // of the steps ending here
+        limit_own_steps<L>(ps, list_, in.first ? in.dt0 : 0.0, last, in.accel_eps);
+        if (tick_ == 0) start_block(ps, n, dom, in);
+        close_steps<L>(ps, list_, 0.5 * last, tick_dt_ * kTicks, tick_, in.first);
+        int* need = nullptr;
+        if (limiter_) {
+            need_.assign(ps.size(), -1);
+            add_rung_needs<L>(ps, nl, need_.data());
+            dom.return_halo_max(need_);
+            need = need_.data();
+        }
+        const double next =
+            double(open_steps<L>(ps, n, active_.data(), need, 0.5 * tick_dt_, tick_));
+        next_ = std::int64_t(dom.collectives().allreduce_min(std::min(next, kTicks)));
+        return double(next_ - tick_) * tick_dt_;
+    }
+
+    // Drifts the owned particles to the next tick; returns the time there.
+    double drift_to_next(ParticleSet<T>& ps, std::size_t n, const Box<T>& box) {
+        drift<L>(ps, n, box, double(next_ - tick_) * tick_dt_, next_, tick_dt_);
+        if (next_ < std::int64_t(kTicks)) {
+            tick_ = next_;
+            return t0_ + double(tick_) * tick_dt_;
+        }
+        last_tick_dt_ = tick_dt_;
+        tick_ = 0;
+        return end_;
+    }
+
+  private:
+    void start_block(ParticleSet<T>& ps, std::size_t n, Domain<T>& dom, const BlockStepInputs& in) {
+        const auto [least, most] = own_step_extremes<L>(ps, n);
+        std::vector<SumMax> e(2);
+        e[0].max = most;
+        e[1].max = -least;
+        dom.collectives().allreduce_sum_max(e);
+        double len = std::min(e[0].max, -e[1].max * kTicks);
+        t0_ = in.time;
+        end_ = t0_ + len;
+        if (in.t_end > 0 && end_ >= in.t_end) end_ = in.t_end;
+        tick_dt_ = (end_ - t0_) / kTicks;
+    }
+
+    bool limiter_;
+    std::int64_t tick_ = 0, next_ = 0;
+    double t0_ = 0, end_ = 0, tick_dt_ = 0, last_tick_dt_ = 0;
+    std::vector<std::uint8_t> active_;
+    std::vector<std::uint32_t> list_;
+    std::vector<int> need_;
+};
+
+} // namespace exasph
