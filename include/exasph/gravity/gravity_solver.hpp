@@ -24,8 +24,7 @@ namespace exasph {
 //     owner decides the same for every other rank, so both sides know what moves without
 //     exchanging counts; the particles of those leaves move point to point;
 //  3. every leaf whose particles are here gets its subtree and each owned particle walks the tree.
-// The nodes a walk sees are the same on any number of ranks, so the result does not depend on the
-// rank count (up to round-off in the order of the per-leaf sums, which is the same too).
+// A walk sees the same nodes on any number of ranks: the result does not depend on rank count.
 template <class T>
 class GravitySolver {
   public:
@@ -36,19 +35,17 @@ class GravitySolver {
     }
 
     double G() const { return G_; }
-    double theta() const { return theta_; }
-    // Particles received from other ranks in the last call.
-    std::size_t remote_sources() const { return remote_; }
-    // Mean interactions per owned particle in the last call (multipole and particle-particle).
-    double multipoles_per_particle() const { return multipoles_per_particle_; }
+    std::size_t remote_sources() const { return remote_; } // received in the last call
+    double multipoles_per_particle() const { return multipoles_per_particle_; } // mean, last call
     double pairs_per_particle() const { return pairs_per_particle_; }
     const SofteningTable<T>& softening() const { return soft_; }
 
     // Adds G times the gravitational acceleration to ax, ay, az of the owned particles [0, n) and
-    // sets their potential phi. The particles must be in the order of the domain's last sync
-    // (SFC order, each rank owning the leaves of `asg`); `box` is the box of that sync.
+    // sets their potential phi (with `active`, block time steps: of those with active[i] != 0;
+    // the tree holds all). The particles are in the order of the domain's last sync (SFC order,
+    // each rank owning the leaves of `asg`); `box` is the box of that sync.
     void compute(ParticleSet<T>& ps, std::size_t n, const Assignment& asg, const Box<T>& box,
-                 CurveKind curve, Collectives& coll) {
+                 CurveKind curve, Collectives& coll, const std::uint8_t* active = nullptr) {
         const int me = coll.rank();
         const auto nl = std::uint32_t(asg.leaf_keys.size() - 1);
         const std::uint32_t f0 = asg.first_leaf[me], f1 = asg.first_leaf[me + 1];
@@ -60,7 +57,7 @@ class GravitySolver {
         const std::size_t self_offset =
             assemble_sources(ps, asg, need, own, received, box, curve, me);
         tree_.add_subtrees(src_, src_begin_, src_end_, bucket_);
-        walk(ps, n, self_offset);
+        walk(ps, n, self_offset, active);
     }
 
   private:
@@ -236,7 +233,8 @@ class GravitySolver {
 
     // One tree walk per group (leaf of the gravity tree) of owned particles, then every particle
     // of the group evaluates the group's list.
-    void walk(ParticleSet<T>& ps, std::size_t n, std::size_t self_offset) {
+    void walk(ParticleSet<T>& ps, std::size_t n, std::size_t self_offset,
+              const std::uint8_t* active) {
         const auto tv = tree_.view(src_);
         const auto soft = soft_.view();
         T *ax = ps.data(Field::ax), *ay = ps.data(Field::ay), *az = ps.data(Field::az);
@@ -246,8 +244,11 @@ class GravitySolver {
                 *h = ps.data(Field::h);
         const auto& nodes = tree_.nodes();
         groups_.clear();
-        for (std::uint32_t g : tree_.groups())
-            if (nodes[g].begin >= self_offset && nodes[g].end <= self_offset + n)
+        for (std::uint32_t g : tree_.groups()) // the owned groups (with an active particle)
+            if (nodes[g].begin >= self_offset && nodes[g].end <= self_offset + n &&
+                (!active || std::count(active + (nodes[g].begin - self_offset),
+                                       active + (nodes[g].end - self_offset),
+                                       0) < nodes[g].end - nodes[g].begin))
                 groups_.push_back(g);
         const double G = G_;
         int missing = 0;
@@ -266,6 +267,7 @@ class GravitySolver {
                     npairs += list.ranges[r + 1] - list.ranges[r];
                 for (std::uint32_t j = grp.begin; j < grp.end; ++j) {
                     const std::size_t i = j - self_offset;
+                    if (active && !active[i]) continue;
                     const GravityField f = evaluate_interactions(
                         list, tv, soft, double(x[i]), double(y[i]), double(z[i]), double(h[i]), j);
                     ax[i] += T(G * f.ax);

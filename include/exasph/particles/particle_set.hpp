@@ -122,6 +122,7 @@ class ParticleSet {
     // order.size() particles (a shorter order drops particles). The other fields are recomputed
     // before they are read: they are only resized.
     void permute(const std::vector<std::uint32_t>& order) {
+        if (permute_in_place(order)) return;
         FieldArray<T> scratch(order.size());
         FieldArray<float> narrow_scratch;
         for (Field fld : fields(carried_)) {
@@ -166,6 +167,33 @@ class ParticleSet {
     std::vector<std::uint64_t> id;
 
   private:
+    // A permutation of the same particles that moves few of them (between two sub-steps of block
+    // time steps most particles keep their place): only the moved entries are copied, through a
+    // scratch of their size. Returns false (nothing done) if more than a quarter move.
+    bool permute_in_place(const std::vector<std::uint32_t>& order) {
+        if (order.size() != size()) return false;
+        std::vector<std::uint32_t> moved;
+        for (std::uint32_t i = 0; i < order.size(); ++i)
+            if (order[i] != i) moved.push_back(i);
+        if (moved.size() > order.size() / 4) return false;
+        auto apply = [&](auto& f, auto& scratch) {
+            scratch.resize(moved.size());
+            for (std::size_t k = 0; k < moved.size(); ++k) scratch[k] = f[order[moved[k]]];
+            for (std::size_t k = 0; k < moved.size(); ++k) f[moved[k]] = scratch[k];
+        };
+        std::vector<T> wide;
+        std::vector<float> single;
+        std::vector<std::uint64_t> ids;
+        for (Field fld : fields(carried_)) {
+            if (stored_single(fld))
+                apply(narrow_[static_cast<std::size_t>(fld)], single);
+            else
+                apply((*this)[fld], wide);
+        }
+        apply(id, ids);
+        return true;
+    }
+
     // A field's array, in whichever precision it is stored.
     void resize_storage(Field f, std::size_t n) {
         const auto k = static_cast<std::size_t>(f);

@@ -45,8 +45,9 @@ inline std::unique_ptr<CsvTable> open_diagnostics(const Config& cfg, bool root, 
         else {
             try {
                 if (append) keep_rows_through(dir / "diagnostics.csv", restart_step);
-                csv = std::make_unique<CsvTable>(dir / "diagnostics.csv", append,
-                                                 diagnostics_columns());
+                csv = std::make_unique<CsvTable>(
+                    dir / "diagnostics.csv", append,
+                    diagnostics_columns(cfg.timesteps == TimeStepping::block));
             } catch (const Error& e) {
                 err = e.what();
             }
@@ -128,7 +129,8 @@ class RunDriver {
             if (root()) {
                 const double mean = (wall_seconds() - wall0_) / double(sim_->step_count() - step0_);
                 print_step(out_, *sim_, wall_seconds() - w0, mean, t_end_);
-                csv_->write(diagnostics_row(sim_->diagnostics(), sim_->phase_times()));
+                csv_->write(diagnostics_row(sim_->diagnostics(), sim_->phase_times(),
+                                            cfg_.timesteps == TimeStepping::block));
             }
             if (schedule_->snapshot_due(sim_->step_count(), sim_->time())) snapshot();
             const bool stop = sim_->flag(kStopRequested);

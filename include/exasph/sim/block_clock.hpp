@@ -7,6 +7,7 @@
 #include "exasph/config/config.hpp"
 #include "exasph/domain/domain.hpp"
 #include "exasph/particles/particle_set.hpp"
+#include "exasph/sim/diagnostics.hpp"
 #include "exasph/sph/block_passes.hpp"
 #include "exasph/sph/passes.hpp"
 #include "exasph/util/error.hpp"
@@ -35,12 +36,11 @@ class BlockClock {
 
     // Refuses what block steps do not handle yet; allocates the rung and half-step fields and
     // makes the derived fields move with the particles (inactive ones keep theirs).
-    BlockClock(ParticleSet<T>& ps, const Config& cfg, bool backend_ok, bool gravity, bool stir)
+    BlockClock(ParticleSet<T>& ps, const Config& cfg, bool backend_ok, bool stir)
         : limiter_(!cfg.no_timestep_limiter) {
-        if (!backend_ok || gravity || stir)
+        if (!backend_ok || stir)
             throw input_error(std::string("--timesteps block: not yet with ") +
                                   (!backend_ok ? "--backend cuda (run with --backend cpu)"
-                                   : gravity   ? "self-gravity (run with --timesteps global)"
                                                : "driven turbulence (--stir-mach)"),
                               true);
         for (Field f : {Field::rung, Field::vhx, Field::vhy, Field::vhz, Field::uh, Field::dtc})
@@ -58,22 +58,25 @@ class BlockClock {
     double last_block() const { return last_tick_dt_ * kTicks; }
     std::int64_t tick() const { return tick_; }
 
-    // The owned particles active at this tick: flags and their list.
-    void select(const ParticleSet<T>& ps, std::size_t n) {
+    // The owned particles active at this tick: flags and their list; the shortest rung and the
+    // active particles of each rung go to `work`.
+    void select(const ParticleSet<T>& ps, std::size_t n, StepWork& work) {
         active_.assign(n, 0);
         list_.clear();
+        work.by_rung.fill(0);
+        work.rung_max = 0;
         const T* rung = ps.data(Field::rung);
-        for (std::uint32_t i = 0; i < n; ++i)
-            if (tick_ == 0 || on_rung_boundary(tick_, int(rung[i]))) active_[i] = 1;
-        for (std::uint32_t i = 0; i < n; ++i)
-            if (active_[i]) list_.push_back(i);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const int r = int(rung[i]);
+            work.rung_max = std::max(work.rung_max, double(r));
+            if (tick_ != 0 && !on_rung_boundary(tick_, r)) continue;
+            active_[i] = 1;
+            list_.push_back(i);
+            work.by_rung[std::size_t(r)] += 1;
+        }
     }
     const std::uint8_t* active() const { return active_.data(); }
     ParticleRange active_range() const { return {list_.data(), list_.size()}; }
-    static double max_rung(const ParticleSet<T>& ps, std::size_t n) {
-        const T* r = ps.data(Field::rung);
-        return n ? double(*std::max_element(r, r + n)) : 0.0;
-    }
     const std::vector<std::uint32_t>& active_list() const { return list_; }
 
     // After the forces (Field::dtc holds each active particle's Courant limit): closes the

@@ -8,10 +8,30 @@
 #include "exasph/domain/collectives.hpp"
 #include "exasph/exact/exact_density.hpp"
 #include "exasph/particles/particle_set.hpp"
+#include "exasph/sph/block_step.hpp"
 #include "exasph/sph/smoothing_length.hpp"
 #include "exasph/util/block_sum.hpp"
 
 namespace exasph {
+
+// The work of a step: the particles with forces (all with global steps, the active ones with
+// block time steps) and the pair terms of one neighbour pass over them; with block steps also
+// the shortest rung in use and the active particles of each rung. Reduced with the diagnostics.
+struct StepWork {
+    static constexpr std::size_t kElements = 2 + kMaxRung + 1;
+    double active = 0, pairs = 0, rung_max = 0;
+    std::array<double, kMaxRung + 1> by_rung{};
+
+    void pack(SumMax* e) const {
+        e[0] = {active, rung_max};
+        e[1].sum = pairs;
+        for (int k = 0; k <= kMaxRung; ++k) e[2 + k].sum = by_rung[std::size_t(k)];
+    }
+    void unpack(const SumMax* e) {
+        active = e[0].sum, rung_max = e[0].max, pairs = e[1].sum;
+        for (int k = 0; k <= kMaxRung; ++k) by_rung[std::size_t(k)] = e[2 + k].sum;
+    }
+};
 
 // Global conserved quantities, neighbour and decomposition statistics of one step (SPEC 10).
 struct Diagnostics {
@@ -35,9 +55,7 @@ struct Diagnostics {
     // Driven turbulence: sum_a m_a v_a . a_stir,a (the stirring's power) and the energy it has
     // put in since the start of the run (etot - e_stir is conserved).
     double stir_power = 0, e_stir = 0;
-    // The particles with forces this step and the pair terms of one neighbour pass over them
-    // (all particles with global steps; the active ones with block steps); the shortest rung.
-    double active = 0, pairs = 0, rung_max = 0;
+    StepWork work;
 };
 
 // Layout of the diagnostics reduction: SumMax elements 0..18 below, then six for the extent of

@@ -48,7 +48,7 @@ class Simulation {
         enable_run_fields(ps_, cfg, eos_, domain_.collectives());
         start_gravity(gravity_, ps_, box_, kernel_, cfg, cfg.G >= 0 ? cfg.G : ic.G);
         if (cfg.timesteps == TimeStepping::block) // the case's stirring when not given
-            blocks_.emplace(ps_, cfg, kBlockCapable, bool(gravity_),
+            blocks_.emplace(ps_, cfg, kBlockCapable,
                             cfg.stir_mach < 0 ? ic.stir_mach > 0 : cfg.stir_mach > 0);
         restart ? resume(*restart) : start();
         diagnose(0.0);
@@ -81,14 +81,14 @@ class Simulation {
         if (safety_.point_due(step_) && (!blocks_ || blocks_->at_boundary()))
             safety_.keep_point(ps_, n_owned(), run_point());
         domain_.distribute(ps_, box_);
-        if (blocks_) blocks_->select(ps_, n_owned());
+        if (blocks_) blocks_->select(ps_, n_owned(), work_);
         timer_.stop(kSync);
         find_neighbours();
         timer_.stop(kNeighbours);
         hydro_forces();
         if (gravity_)
             gravity_->compute(ps_, n_owned(), domain_.assignment(), box_, domain_.curve(),
-                              domain_.collectives());
+                              domain_.collectives(), blocks_ ? blocks_->active() : nullptr);
         if (stirring_) add_stirring<L>(ps_, n_owned(), stirring_->modes());
         timer_.stop(kGravity);
         const double dt = choose_time_step();
@@ -187,8 +187,8 @@ class Simulation {
             res = nlists_.build(domain_.local_tree(), &domain_.halo_tree(), sv, box_,
                                 NeighbourCriterion::symmetric, std::uint32_t(n_owned()));
         max_list_ = res.max_count;
-        active_ = blocks_ ? blocks_->active_list().size() : n_owned();
-        if constexpr (requires { res.pairs; }) pairs_ = res.pairs;
+        work_.active = double(blocks_ ? blocks_->active_list().size() : n_owned());
+        if constexpr (requires { res.pairs; }) work_.pairs = double(res.pairs);
     }
 
     // SPEC 3-6 (sim/hydro_forces.hpp).
@@ -252,10 +252,8 @@ class Simulation {
 
     // SPEC 10 sums, run-control flags and the particles' extent (next box): one collective.
     void diagnose(double dt) {
-        std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags + 2);
-        SumMax* work = e.data() + kDiagWithExtent + kNumControlFlags;
-        work[0] = {double(active_), blocks_ ? blocks_->max_rung(ps_, n_owned()) : 0.0};
-        work[1].sum = double(pairs_);
+        std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags + StepWork::kElements);
+        work_.pack(e.data() + kDiagWithExtent + kNumControlFlags);
         local_diagnostics(ps_, n_owned(), domain_.n_halo(), exact_, time_ - dt, cfg_.ng0, e.data());
         Domain<T>::local_extent(ps_, n_owned(), e.data() + kDiagElements);
         flags_.pack(e.data() + kDiagWithExtent);
@@ -263,7 +261,7 @@ class Simulation {
         flags_.unpack(e.data() + kDiagWithExtent);
         diag_ = diagnostics_from(e.data(), domain_.nranks());
         if (exact_.valid() && step_ > 0) diag_.l1_rho = e[11].sum / double(diag_.n);
-        diag_.active = work[0].sum, diag_.rung_max = work[0].max, diag_.pairs = work[1].sum;
+        diag_.work.unpack(e.data() + kDiagWithExtent + kNumControlFlags);
         diag_.step = step_;
         diag_.time = time_;
         diag_.dt = dt;
@@ -293,8 +291,7 @@ class Simulation {
     std::optional<Stirring> stirring_;
     static constexpr bool kBlockCapable = L::kBackend == Backend::openmp;
     std::optional<BlockClock<T, L>> blocks_; // --timesteps block
-    std::size_t active_ = 0;  // particles with forces this step (this rank) and the pair terms
-    std::uint64_t pairs_ = 0; // of one neighbour pass over them
+    StepWork work_;                          // this rank's
 };
 
 } // namespace exasph

@@ -38,10 +38,10 @@ SedovOutcome run_sedov(int side, TimeStepping ts, bool limiter = true) {
     while (sim.time() < t_end * (1 - 1e-12)) {
         sim.step();
         const auto& d = sim.diagnostics();
-        out.active_sum += d.active;
-        out.pairs_sum += d.pairs;
-        out.partial_steps += d.active < double(d.n);
-        out.pairs_follow_active &= d.pairs <= d.active * cfg.ngmax;
+        out.active_sum += d.work.active;
+        out.pairs_sum += d.work.pairs;
+        out.partial_steps += d.work.active < double(d.n);
+        out.pairs_follow_active &= d.work.pairs <= d.work.active * cfg.ngmax;
         ++out.steps;
     }
     const auto& d = sim.diagnostics();
