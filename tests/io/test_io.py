@@ -5,7 +5,7 @@ XDMF sidecar, and bad input. Run by CTest as
     test_io.py TEST --exe build/exasph --mpirun "mpirun --oversubscribe [--allow-run-as-root]"
 
 with TEST one of: restart, sigkill, sigterm, snapshot, bad_input, corrupt, auto_interval,
-sdc_mpi.
+sdc_mpi, block_steps.
 Exits non-zero on failure.
 """
 import argparse
@@ -85,6 +85,31 @@ def test_restart(r):
     # So are the gravity parameters (issue 15: they used to be silently replaced), in one line.
     p = r.run(1, "--restart", r.work / "full1" / "checkpoint_000010.h5", "--theta", 0.7, expect=2)
     assert "--theta" in p.stderr and p.stderr.strip().count("\n") == 0, p.stderr
+
+
+def test_block_steps(r):
+    """Block time steps (issue 20): checkpoints are written where a block ends; a restart from one
+    continues bitwise (1 and 2 ranks), 3 ranks agree with 1 to 1e-10, and a checkpoint due inside
+    a block waits for its end."""
+    run = ["--init", "sedov", "-n", 12, "--timesteps", "block", "--t-end", 0.02, "--threads", 1]
+    for ranks in (1, 2, 3):
+        r.run(ranks, *run, "--checkpoint-every", 3, "--out", r.work / f"block{ranks}")
+    full = r.work / "block1"
+    cps = sorted(full.glob("checkpoint_*.h5"))
+    assert len(cps) >= 2, cps
+    last = cps[-1]
+    for ranks in (1, 2):
+        src = r.work / f"block{ranks}"
+        b = r.work / f"block_restarted{ranks}"
+        r.run(ranks, "--restart", sorted(src.glob("checkpoint_*.h5"))[-2], "--t-end", 0.02,
+              "--threads", 1, "--checkpoint-every", 3, "--out", b)
+        compare(src / last.name, b / last.name, 0.0)
+    compare(last, r.work / "block3" / last.name, 1e-10)
+    # Every 3 steps was asked for; block ends are rarer: the steps written are block ends.
+    with h5py.File(last) as f:
+        assert int(f.attrs["step"]) > 0 and "rung" in f["state"], list(f["state"])
+    print(f"block steps: checkpoints at steps {[int(c.stem.split('_')[1]) for c in cps]}, "
+          "restart bitwise (1, 2 ranks), 3 ranks within 1e-10")
 
 
 def wait_for(path, timeout=120):
