@@ -53,6 +53,7 @@ std::string changed_value(const Param& p) {
     if (key == "curve") return "morton";
     if (key == "scheme") return "ve";
     if (key == "backend") return "cpu";
+    if (key == "timesteps") return "block";
     if (key == "steps") return "5";
     if (key == "restart") return "";
     return std::visit(

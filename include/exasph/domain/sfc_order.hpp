@@ -33,6 +33,26 @@ void fit_open_axes(Box<T>& box, const ParticleSet<T>& ps) {
     }
 }
 
+// Insertion sort for items almost in order (between two steps most particles keep their place in
+// the curve, and those that move go a few places): O(n + moves) instead of O(n log n). Gives up
+// after `budget` moves (the items are then still a permutation, for a full sort to finish).
+template <class Item, class Less>
+bool insertion_sort_within(std::vector<Item>& a, const Less& before, std::size_t budget) {
+    std::size_t moves = 0;
+    for (std::size_t i = 1; i < a.size(); ++i) {
+        if (!before(a[i], a[i - 1])) continue;
+        const Item v = a[i];
+        std::size_t j = i;
+        do {
+            a[j] = a[j - 1];
+            --j;
+        } while (j > 0 && before(v, a[j - 1]) && ++moves <= budget);
+        a[j] = v;
+        if (moves > budget) return false;
+    }
+    return true;
+}
+
 // Sorts the particles by `keys` (one per particle: their SFC keys), ties by persistent id, and
 // returns the sorted keys (in the storage of `keys`). Scratch is kept small because the sync's
 // peak is the run's peak memory: 16-byte sort items sorted in place, freed before the fields
@@ -58,13 +78,15 @@ std::vector<std::uint64_t> sort_by_keys(ParticleSet<T>& ps, std::vector<std::uin
         std::vector<Item> items(n);
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i) items[i] = {keys[i], static_cast<std::uint32_t>(i)};
+        if (!insertion_sort_within(items, before, n / 8)) {
 #if defined(_OPENMP) && defined(__GLIBCXX__)
-        // In place (the default multiway mergesort copies the items).
-        __gnu_parallel::sort(items.begin(), items.end(), before,
-                             __gnu_parallel::balanced_quicksort_tag());
+            // In place (the default multiway mergesort copies the items).
+            __gnu_parallel::sort(items.begin(), items.end(), before,
+                                 __gnu_parallel::balanced_quicksort_tag());
 #else
-        std::sort(items.begin(), items.end(), before);
+            std::sort(items.begin(), items.end(), before);
 #endif
+        }
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i) {
             keys[i] = items[i].key;
