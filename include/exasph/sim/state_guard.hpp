@@ -47,9 +47,12 @@ class StateGuard {
                     return n;
                 }));
         std::string why;
+        std::vector<const T*> state; // the enabled state fields, looked up once
+        for (Field f : ps.fields(kState)) state.push_back(ps.data(f));
 #pragma omp parallel for schedule(static) reduction(min : bad_physics)
         for (std::int64_t i = 0; i < nn; ++i)
-            if (!physics_violation(ps, i, box, dt, press_ok, u_positive).empty() && i < bad_physics)
+            if (i < bad_physics &&
+                !physics_violation(ps, state, i, box, dt, press_ok, u_positive).empty())
                 bad_physics = i;
         if (bad_hash < nn)
             why = "particle id " + std::to_string(ps.id[bad_hash]) +
@@ -57,17 +60,19 @@ class StateGuard {
         if (bad_physics < nn)
             why += std::string(why.empty() ? "" : "; ") + "particle id " +
                    std::to_string(ps.id[bad_physics]) + ": " +
-                   physics_violation(ps, bad_physics, box, dt, press_ok, u_positive);
+                   physics_violation(ps, state, bad_physics, box, dt, press_ok, u_positive);
         return why;
     }
 
     // The first invariant particle i breaks (for the report), or "" if none.
-    static std::string physics_violation(const ParticleSet<T>& ps, std::size_t i, const Box<T>& box,
-                                         double dt, bool press_ok, bool u_positive) {
-        for (const auto& info : kFieldTable)
-            if ((info.roles & kState) && ps.enabled(info.field) &&
-                !std::isfinite(ps[info.field][i]))
-                return std::string(info.name) + " is not finite";
+    // `state` holds the data of ps.fields(kState), in that order.
+    static std::string physics_violation(const ParticleSet<T>& ps,
+                                         const std::vector<const T*>& state, std::size_t i,
+                                         const Box<T>& box, double dt, bool press_ok,
+                                         bool u_positive) {
+        for (std::size_t k = 0; k < state.size(); ++k)
+            if (!std::isfinite(state[k][i]))
+                return std::string(field_info(ps.fields(kState)[k]).name) + " is not finite";
         if (!(ps[Field::m][i] > T(0))) return "m is not positive";
         if (!(ps[Field::h][i] > T(0))) return "h is not positive";
         if (u_positive && ps[Field::u][i] < T(0)) return "u is negative";

@@ -85,6 +85,7 @@ struct RungNeedKernel {
 
     EXASPH_HD void operator()(std::uint32_t i, NeighbourSpan nb) const {
         const int bound = int(p[Field::rung][i]) - 2;
+        if (bound <= 0) return; // every rung is at least 0
         for (std::uint32_t k = 0; k < nb.count; ++k) atomic_max(need + nb[k], bound);
     }
 };
