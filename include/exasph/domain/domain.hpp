@@ -91,7 +91,9 @@ class Domain {
         std::vector<int>().swap(dest); // the sort below is the step's memory peak
         std::vector<std::uint32_t>().swap(leaf_);
         // The keys computed above still belong to the particles when none left or arrived.
-        auto keys = moved ? sort_along_curve(ps, box, curve_) : sort_by_keys(ps, std::move(keys_));
+        SortScratch* kept = ps.carried() & kDerived ? &sort_scratch_ : nullptr; // block steps
+        auto keys =
+            moved ? sort_along_curve(ps, box, curve_) : sort_by_keys(ps, std::move(keys_), kept);
         std::vector<std::uint64_t>().swap(keys_);
         local_tree_.build(keys.data(), std::uint32_t(n_owned_), leaf_size_);
         local_tree_.update_bounds(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
@@ -178,6 +180,7 @@ class Domain {
     static constexpr int kTagHaloCount = 7102;
     static constexpr int kTagHalo = 7103;
     static constexpr int kTagHaloReturn = 7104;
+    SortScratch sort_scratch_; // kept between syncs only with block time steps
 
     std::vector<std::uint64_t> compute_keys(const ParticleSet<T>& ps, const Box<T>& box) const {
         std::vector<std::uint64_t> keys(n_owned_);

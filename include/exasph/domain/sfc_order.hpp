@@ -57,12 +57,22 @@ bool insertion_sort_within(std::vector<Item>& a, const Less& before, std::size_t
 // returns the sorted keys (in the storage of `keys`). Scratch is kept small because the sync's
 // peak is the run's peak memory: 16-byte sort items sorted in place, freed before the fields
 // are permuted.
-template <class T>
-std::vector<std::uint64_t> sort_by_keys(ParticleSet<T>& ps, std::vector<std::uint64_t> keys) {
+// The sort's scratch (16-byte items and the permutation), kept between calls where the sync runs
+// every sub-step of block time steps: allocating its pages afresh each time costs more than the
+// sort (page faults). Global steps free it (the sort is the step's memory peak).
+struct SortScratch {
     struct Item {
         std::uint64_t key;
         std::uint32_t index;
     };
+    std::vector<Item> items;
+    std::vector<std::uint32_t> order;
+};
+
+template <class T>
+std::vector<std::uint64_t> sort_by_keys(ParticleSet<T>& ps, std::vector<std::uint64_t> keys,
+                                        SortScratch* kept = nullptr) {
+    using Item = SortScratch::Item;
     const std::uint64_t* id = ps.id.data();
     auto before = [id](const Item& a, const Item& b) {
         return a.key != b.key ? a.key < b.key : id[a.index] < id[b.index];
@@ -73,9 +83,13 @@ std::vector<std::uint64_t> sort_by_keys(ParticleSet<T>& ps, std::vector<std::uin
     for (std::size_t i = 1; i < n; ++i)
         sorted = sorted && (keys[i - 1] != keys[i] ? keys[i - 1] < keys[i] : id[i - 1] < id[i]);
     if (sorted) return keys;
-    std::vector<std::uint32_t> order(n);
+    SortScratch local;
+    SortScratch& scratch = kept ? *kept : local;
+    std::vector<std::uint32_t>& order = scratch.order;
+    order.resize(n);
     {
-        std::vector<Item> items(n);
+        std::vector<Item>& items = scratch.items;
+        items.resize(n);
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i) items[i] = {keys[i], static_cast<std::uint32_t>(i)};
         if (!insertion_sort_within(items, before, n / 8)) {
@@ -93,6 +107,7 @@ std::vector<std::uint64_t> sort_by_keys(ParticleSet<T>& ps, std::vector<std::uin
             order[i] = items[i].index;
         }
     }
+    if (!kept) std::vector<Item>().swap(scratch.items); // before the permutation's peak
     ps.permute(order);
     return keys;
 }
