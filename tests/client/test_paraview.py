@@ -15,9 +15,9 @@ Exits non-zero on failure.
 import argparse
 import os
 import shlex
+import select
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import h5py
@@ -146,23 +146,24 @@ def main():
 
 
 def under_xvfb(cmd):
-    """cmd with DISPLAY on an Xvfb of its own: a display number from the process id (not
-    xvfb-run -a, whose choice of a free number races with other X servers starting beside it:
-    once under ctest -j2 the render found no server), access control off, stopped at the end."""
-    n = 100 + os.getpid() % 800
-    while Path(f"/tmp/.X{n}-lock").exists() or Path(f"/tmp/.X11-unix/X{n}").exists():
-        n += 1
-    xvfb = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1280x1024x24", "-nolisten", "tcp",
-                             "-ac"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    """cmd with DISPLAY on an Xvfb of its own, access control off, stopped at the end. Xvfb picks
+    a free display number and writes it to a pipe (-displayfd) once it accepts connections: no
+    race with other X servers starting beside it (xvfb-run -a once found no server under ctest
+    -j2), and no guess of when the server is ready (a display number from the process id, with a
+    wait for its socket, still met "bad X server connection" once under load)."""
+    read_end, write_end = os.pipe()
+    xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0",
+                             "1280x1024x24", "-nolisten", "tcp", "-ac"], pass_fds=(write_end,),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    os.close(write_end)
     try:
-        for _ in range(300):  # up to 30 s for its socket
-            if Path(f"/tmp/.X11-unix/X{n}").exists() or xvfb.poll() is not None:
-                break
-            time.sleep(0.1)
-        assert xvfb.poll() is None, f"Xvfb :{n} exited with {xvfb.returncode}"
-        time.sleep(0.5)  # the socket exists a moment before the server accepts
-        return subprocess.run(cmd, env={**os.environ, "DISPLAY": f":{n}"}).returncode
+        ready, _, _ = select.select([read_end], [], [], 60)
+        number = os.read(read_end, 32).decode().strip() if ready else ""
+        assert number.isdigit() and xvfb.poll() is None, \
+            f"Xvfb gave no display within 60 s (exit status {xvfb.poll()})"
+        return subprocess.run(cmd, env={**os.environ, "DISPLAY": f":{number}"}).returncode
     finally:
+        os.close(read_end)
         xvfb.terminate()
         xvfb.wait()
 
