@@ -66,12 +66,6 @@ int main(int argc, char** argv) {
     // A file-size limit (ulimit -f) reached while writing: the write fails and the run ends
     // with exit 3 as on a full disk, instead of being killed by SIGXFSZ.
     std::signal(SIGXFSZ, SIG_IGN);
-    // OpenMPI's MPI-IO opens every file with a shared-file-pointer component; its "sm" variant
-    // keeps a named semaphore per file name in /dev/shm, and a process killed while writing
-    // (a batch system's SIGKILL) leaves it locked: the next run on that node that writes a file
-    // of the same name (snapshot_000001.h5.tmp) then waits forever in MPI_File_open. exasph
-    // uses no shared file pointers. The user's own setting wins (overwrite = 0).
-    setenv("OMPI_MCA_sharedfp", "^sm", 0);
     MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
