@@ -24,26 +24,37 @@
 
 namespace exasph {
 
-inline constexpr const char* kCheckpointFormat = "exasph-checkpoint-3"; // sealed (file_seal.hpp)
+// Sealed (file_seal.hpp); 4 added the block-time-step clock and /derived inside a block (a
+// version-3 file is a version-4 file without them, and is read as one).
+inline constexpr const char* kCheckpointFormat = "exasph-checkpoint-4";
+inline constexpr const char* kCheckpointFormatPrevious = "exasph-checkpoint-3";
+
+// The particle fields a checkpoint holds: the state, and inside a block of block time steps
+// (RestartState::block) the derived fields too, which inactive particles carry between sub-steps.
+inline std::uint8_t checkpoint_roles(const RestartState& rs) {
+    return rs.block.tick != 0 ? kState | kDerived : kState;
+}
 
 // Checksum of everything a restart continues from: per particle a hash chain of its id and the
-// bits of every state field (in field-list order), summed over particles modulo 2^64 so that it
-// does not depend on how the particles are distributed or ordered; plus a chain of the scalars
-// and the global tree. One collective (a sum); rank-count independent.
+// bits of every field of checkpoint_roles (in field-list order), summed over particles modulo 2^64
+// so that it does not depend on how the particles are distributed or ordered; plus a chain of the
+// scalars and the global tree. One collective (a sum); rank-count independent.
 template <class T>
 std::uint64_t checkpoint_checksum(const ParticleSet<T>& ps, std::size_t n, const RestartState& rs,
                                   double dt0, MPI_Comm comm) {
-    const auto fields = ps.fields(kState);
+    const auto fields = ps.fields(checkpoint_roles(rs));
     std::uint64_t sum = 0;
     for (std::size_t i = 0; i < n; ++i) {
         HashChain h(ps.id[i]);
-        for (Field f : fields) h.add_float(ps[f][i]);
+        for (Field f : fields) h.add_float(ps.value(f, i));
         sum += h.value();
     }
     MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_UINT64_T, MPI_SUM, comm);
     HashChain scalars(0x65786173706800ull);
     scalars.add_float(rs.time).add(std::uint64_t(rs.step)).add_float(rs.dt_m1).add_float(dt0);
     for (auto k : rs.leaf_keys) scalars.add(k);
+    if (rs.block.tick != 0)
+        scalars.add(std::uint64_t(rs.block.tick)).add_float(rs.block.start).add_float(rs.block.end);
     if (!rs.stir.coeff.empty()) { // a run with stirring
         scalars.add_float(rs.stir.accel_rms).add_float(rs.stir.t_corr);
         scalars.add_float(rs.stir.energy_in);
@@ -66,6 +77,41 @@ inline StirState read_stir_state(const h5::Group& root) {
         if (!std::isfinite(c)) throw attribute_error(root, "stir_coeff", "must be finite");
     return {read_finite(root, "stir_accel_rms"), read_finite(root, "stir_t_corr"),
             read_finite(root, "stir_energy_in"), coeff};
+}
+
+// Block time steps inside a block: the clock as root attributes.
+inline void write_block_point(const h5::Group& root, const BlockPoint& b) {
+    h5::write_attribute(root, "block_tick", b.tick);
+    h5::write_attribute(root, "block_start", b.start);
+    h5::write_attribute(root, "block_end", b.end);
+}
+
+inline BlockPoint read_block_point(const h5::Group& root, const Config& cfg) {
+    BlockPoint b;
+    const double tick = read_finite(root, "block_tick");
+    b.start = read_finite(root, "block_start");
+    b.end = read_finite(root, "block_end");
+    if (!(tick > 0 && tick < 0x1p24 && b.end > b.start))
+        throw attribute_error(root, "block_tick", "out of range (or block_end <= block_start)");
+    if (cfg.timesteps != TimeStepping::block)
+        throw attribute_error(root, "block_tick", "given, but the run has global time steps");
+    b.tick = std::int64_t(tick);
+    return b;
+}
+
+// Inside a block: the derived fields of /derived (the optional ones the run had; reading one
+// enables it), with the ids, which must be those of /state in the same order.
+template <class T>
+void read_derived_fields(const h5::File& file, ParticleSet<T>& ps, MPI_Comm comm) {
+    h5::Group derived(file, "/derived", false);
+    std::vector<Field> required, optional;
+    for (Field f : fields_with_role(kDerived))
+        (field_info(f).roles & kOptional ? optional : required).push_back(f);
+    const std::vector<std::uint64_t> ids = ps.id;
+    read_particle_fields(derived, ps, required, optional, true, comm);
+    int same = ps.id == ids;
+    MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_LAND, comm);
+    if (!same) throw input_error(file.path() + ": /derived/id differs from /state/id", true);
 }
 
 // Test hook for the crash-safety test: with EXASPH_TEST_CHECKPOINT_STALL=STEP set, the checkpoint
@@ -120,6 +166,7 @@ std::string write_checkpoint(const OutputState<T>& run, const Config& cfg, const
         h5::write_attribute(root, "dt_m1", rs.dt_m1);
         h5::write_attribute(root, "dt0", run.dt0);
         if (!rs.stir.coeff.empty()) write_stir_state(root, rs.stir);
+        if (rs.block.tick != 0) write_block_point(root, rs.block);
         h5::Group state(file, "/state", true);
         const auto fields = run.particles.fields(kState); // the optional ones the run carries
         const std::vector<Field> first(fields.begin(), fields.begin() + fields.size() / 2);
@@ -127,6 +174,11 @@ std::string write_checkpoint(const OutputState<T>& run, const Config& cfg, const
         write_particle_fields(state, run.particles, run.n_owned, first, false, comm);
         checkpoint_test_stall(rs.step);
         write_particle_fields(state, run.particles, run.n_owned, second, true, comm);
+        if (rs.block.tick != 0) {
+            h5::Group derived(file, "/derived", true);
+            write_particle_fields(derived, run.particles, run.n_owned,
+                                  run.particles.fields(kDerived), true, comm);
+        }
         h5::Group domain(file, "/domain", true);
         const auto& keys = rs.leaf_keys;
         h5::write_u64(domain, "leaf_keys", keys.data(), rank == 0 ? keys.size() : 0, 0,
@@ -162,7 +214,7 @@ Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm com
     h5::Group root(file, "/", false);
     const std::string format =
         h5::has_attribute(root, "format") ? h5::read_attribute_string(root, "format") : "";
-    if (format != kCheckpointFormat)
+    if (format != kCheckpointFormat && format != kCheckpointFormatPrevious)
         throw input_error(path + ": not an exasph checkpoint (attribute /format)", true);
     Checkpoint<T> cp;
     read_run_parameters(root, cfg);
@@ -188,6 +240,8 @@ Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm com
         throw input_error(path + ": dt0, dt_m1, step or gamma out of range", true);
     cp.rs.step = std::int64_t(step);
     if (h5::has_attribute(root, "stir_coeff")) cp.rs.stir = read_stir_state(root);
+    if (h5::has_attribute(root, "block_tick")) cp.rs.block = read_block_point(root, cfg);
+    cp.ic.particles.set_narrow_single(!cfg.double_precision); // derived fields: as written
     h5::Group state(file, "/state", false);
     // Optional state fields (Tait reference state, alpha, X) are in the file when the run
     // carried them; reading one enables it.
@@ -195,6 +249,7 @@ Checkpoint<T> read_checkpoint(const std::string& path, Config& cfg, MPI_Comm com
     for (Field f : fields_with_role(kState))
         (field_info(f).roles & kOptional ? optional : required).push_back(f);
     read_particle_fields(state, cp.ic.particles, required, optional, true, comm);
+    if (cp.rs.block.tick != 0) read_derived_fields(file, cp.ic.particles, comm);
     h5::Group domain(file, "/domain", false);
     const std::uint64_t nkeys = h5::dataset_length(domain, "leaf_keys", true);
     cp.rs.leaf_keys = h5::read_u64(domain, "leaf_keys", 0, nkeys);

@@ -134,28 +134,15 @@ class RunDriver {
             }
             if (schedule_->snapshot_due(sim_->step_count(), sim_->time())) snapshot();
             const bool stop = sim_->flag(kStopRequested);
-            // Block time steps checkpoint where every particle is synchronised (a block's end).
-            checkpoint_pending_ |= schedule_->checkpoint_due(sim_->step_count()) ||
-                                   sim_->flag(kCheckpointByClock) ||
-                                   (stop && kHaveHdf5); // without HDF5: no checkpoint
-            if (checkpoint_pending_ && sim_->at_sync_point()) checkpoint();
+            if (schedule_->checkpoint_due(sim_->step_count()) || sim_->flag(kCheckpointByClock) ||
+                (stop && kHaveHdf5)) // without HDF5: no checkpoint
+                checkpoint();
             if (stop) {
-                if (root() && checkpoint_pending_)
-                    out_ << "no checkpoint: step " << sim_->step_count()
-                         << " is inside a block of block time steps (checkpoints are written at "
-                            "block ends)\n";
                 if (root()) out_ << "stopped by a signal after step " << sim_->step_count() << "\n";
                 return 128 + (detail::g_stop_signal ? int(detail::g_stop_signal) : SIGTERM);
             }
         }
-        if (schedule_->checkpointing() && last_checkpoint_ != sim_->step_count()) {
-            if (sim_->at_sync_point())
-                checkpoint();
-            else if (root())
-                out_ << "no final checkpoint: step " << sim_->step_count()
-                     << " is inside a block of block time steps (checkpoints are written at "
-                        "block ends)\n";
-        }
+        if (schedule_->checkpointing() && last_checkpoint_ != sim_->step_count()) checkpoint();
         return 0;
     }
 
@@ -229,7 +216,6 @@ class RunDriver {
         output_wall_ += cost;
         const double interval = schedule_->checkpoint_written(wall_seconds(), cost);
         last_checkpoint_ = sim_->step_count();
-        checkpoint_pending_ = false;
         if (root()) out_ << strprintf("checkpoint %s (%.3f s)\n", path.c_str(), cost);
         if (root() && interval > 0)
             out_ << strprintf("checkpoint interval: C = %.3f s, M = %.1f s -> every %.1f s of "
@@ -247,7 +233,6 @@ class RunDriver {
     std::unique_ptr<CsvTable> csv_;
     std::unique_ptr<OutputSchedule> schedule_;
     std::int64_t step0_ = 0, last_checkpoint_ = -1;
-    bool checkpoint_pending_ = false; // due, waiting for a synchronisation point
     bool warned_ngmax_ = false;
 };
 

@@ -6,6 +6,7 @@
 
 #include "exasph/config/config.hpp"
 #include "exasph/domain/domain.hpp"
+#include "exasph/io/restart_state.hpp"
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/sim/diagnostics.hpp"
 #include "exasph/sph/block_passes.hpp"
@@ -27,8 +28,9 @@ struct BlockStepInputs {
 // and the block's length is chosen (the largest own step limit, at most 2^kMaxRung times the
 // smallest, and no further than t_end). A sub-step computes forces for the particles active at
 // this tick, closes and reopens their steps (with the limiter's wake-ups), then drifts everyone
-// to the next tick at which any particle is active. Checkpoints and rollback points are taken
-// at block boundaries (at_boundary()), where every particle's state is synchronised.
+// to the next tick at which any particle is active. Rollback points are taken at block
+// boundaries (at_boundary()), where every particle's state is synchronised; a checkpoint inside
+// a block holds the clock (where()) and the derived fields.
 template <class T, class L>
 class BlockClock {
   public:
@@ -48,12 +50,19 @@ class BlockClock {
         ps.carry(kState | kDerived);
     }
 
-    // A restart or rollback to a block boundary; `last_block` is the length of the block that
-    // ended there (its steps are closed by the next sub-step).
-    void resume(double last_block) {
+    // A restart or rollback: `last_block` is the length of the block that ended last (its steps
+    // are closed by the next sub-step when `at` is a block's end); `at` inside a block: the
+    // sub-step reached there (a checkpoint's, whose derived fields were restored with it).
+    void resume(double last_block, const BlockPoint& at) {
         last_tick_dt_ = last_block / kTicks;
-        tick_ = 0;
+        tick_ = at.tick;
+        if (tick_ == 0) return;
+        t0_ = at.start;
+        end_ = at.end;
+        tick_dt_ = (end_ - t0_) / kTicks; // as start_block computed it
     }
+    // Where the clock stands (tick 0: a block's end).
+    BlockPoint where() const { return tick_ == 0 ? BlockPoint{} : BlockPoint{tick_, t0_, end_}; }
     bool at_boundary() const { return tick_ == 0; }
     double last_block() const { return last_tick_dt_ * kTicks; }
     std::int64_t tick() const { return tick_; }

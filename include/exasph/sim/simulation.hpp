@@ -78,8 +78,9 @@ class Simulation {
                                                       eos_.kind == EosKind::ideal_gas);
         if (domain_.count_particles(ps_, box_, corrupt))
             return roll_back("the state check before step " + std::to_string(step_ + 1), step_ + 1);
-        if (safety_.point_due(step_) && (!blocks_ || blocks_->at_boundary()))
-            safety_.keep_point(ps_, n_owned(), run_point());
+        point_pending_ |= safety_.point_due(step_); // block steps: waits for a block's end
+        if (point_pending_ && at_sync_point())
+            safety_.keep_point(ps_, n_owned(), run_point()), point_pending_ = false;
         domain_.distribute(ps_, box_);
         if (blocks_) blocks_->select(ps_, n_owned(), work_);
         timer_.stop(kSync);
@@ -116,8 +117,10 @@ class Simulation {
     void raise_flag(ControlFlag f) { flags_.raise(f); }
     bool flag(ControlFlag f) const { return flags_[f]; }
     RestartState restart_state() const {
-        return {time_, step_, blocks_ ? blocks_->last_block() : dt_m1_,
-                domain_.global_tree().keys(), stirring_ ? stirring_->state() : StirState{}};
+        RestartState rs{time_, step_, dt_m1_, domain_.global_tree().keys(), {}, {}};
+        if (stirring_) rs.stir = stirring_->state();
+        if (blocks_) rs.dt_m1 = blocks_->last_block(), rs.block = blocks_->where();
+        return rs;
     }
     // What snapshots and checkpoints read (io/output_state.hpp).
     OutputState<T> output_state() const {
@@ -139,7 +142,7 @@ class Simulation {
     const Box<T>& box() const { return box_; }
     double time() const { return time_; }
     std::int64_t step_count() const { return step_; }
-    // Block time steps: whether every particle is synchronised (a block's end; checkpoints).
+    // Block time steps: whether every particle is synchronised (a block's end; rollback points).
     bool at_sync_point() const { return !blocks_ || blocks_->at_boundary(); }
     // Longest neighbour list of the last step on this rank (symmetric criterion).
     std::uint32_t max_list_length() const { return max_list_; }
@@ -170,7 +173,7 @@ class Simulation {
         time_ = rs.time;
         step_ = rs.step;
         dt_m1_ = rs.dt_m1;
-        if (blocks_) blocks_->resume(rs.dt_m1);
+        if (blocks_) blocks_->resume(rs.dt_m1, rs.block);
         domain_.restore(ps_, rs.leaf_keys);
         if (stirring_) stirring_->restore(rs.stir);
     }
@@ -284,7 +287,7 @@ class Simulation {
     double courant_dt_ = 0; // Courant limit of this step's particles (momentum-energy pass)
     std::int64_t step_ = 0;
     std::uint32_t max_list_ = 0;
-    bool recovered_ = false;
+    bool recovered_ = false, point_pending_ = false;
     ControlFlags flags_;
     ExactDensity exact_;
     std::optional<GravitySolver<T>> gravity_;
