@@ -47,14 +47,30 @@ __global__ void particles_min(Kernel k, std::uint32_t n, double* out) {
     block_min(i < n ? double(k(i)) : CUDART_INF, out);
 }
 
+// The particles idx[0, n) (block time steps: the active ones; idx in managed memory).
+template <class Kernel>
+__global__ void particles_of(Kernel k, const std::uint32_t* idx, std::uint32_t n) {
+    const std::uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
+    if (s < n) k(idx[s]);
+}
+
+template <class Kernel>
+__global__ void particles_of_min(Kernel k, const std::uint32_t* idx, std::uint32_t n, double* out) {
+    const std::uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
+    block_min(s < n ? double(k(idx[s])) : CUDART_INF, out);
+}
+
+// Slot s of the lists is particle member[s] (member null: s).
 template <class Kernel>
 __global__ void neighbourhoods(Kernel k, const std::uint32_t* index, const std::uint64_t* offset,
-                               const std::uint32_t* count, std::uint32_t n, double* out) {
-    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+                               const std::uint32_t* count, const std::uint32_t* member,
+                               std::uint32_t n, double* out) {
+    const std::uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
     constexpr bool kMin = kReduces<Kernel>;
     double v = CUDART_INF;
-    if (i < n) {
-        const NeighbourSpan nb = BatchLayout::span(index, offset, count, i);
+    if (s < n) {
+        const NeighbourSpan nb = BatchLayout::span(index, offset, count, s);
+        const std::uint32_t i = member ? member[s] : s;
         if constexpr (kMin)
             v = double(k(i, nb));
         else
@@ -112,6 +128,25 @@ double CudaLauncher::reduce_min(std::size_t n, const Kernel& k) {
     return minima.least();
 }
 
+template <class Kernel>
+void CudaLauncher::for_each_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
+    if (n == 0) return;
+    cuda_detail::particles_of<<<cuda_detail::blocks_for(n), cuda_detail::kThreads>>>(
+        k, idx, std::uint32_t(n));
+    cuda_detail::finish("running a pass over the active particles");
+}
+
+template <class Kernel>
+double CudaLauncher::reduce_min_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
+    if (n == 0) return std::numeric_limits<double>::infinity();
+    const unsigned blocks = cuda_detail::blocks_for(n);
+    cuda_detail::BlockMinima minima(blocks);
+    cuda_detail::particles_of_min<<<blocks, cuda_detail::kThreads>>>(k, idx, std::uint32_t(n),
+                                                                     minima.device());
+    cuda_detail::finish("running a reduction over the active particles");
+    return minima.least();
+}
+
 template <class T, class Kernel>
 double CudaLauncher::for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k) {
     const std::size_t n = nl.size();
@@ -119,7 +154,7 @@ double CudaLauncher::for_each_neighbourhood(const DeviceLists<T>& nl, const Kern
     const unsigned blocks = cuda_detail::blocks_for(n);
     cuda_detail::BlockMinima minima(kReduces<Kernel> ? blocks : 0);
     cuda_detail::neighbourhoods<<<blocks, cuda_detail::kThreads>>>(
-        k, nl.index(), nl.offset(), nl.count(), std::uint32_t(n), minima.device());
+        k, nl.index(), nl.offset(), nl.count(), nl.member(), std::uint32_t(n), minima.device());
     cuda_detail::finish("running a neighbour pass");
     return kReduces<Kernel> ? minima.least() : std::numeric_limits<double>::infinity();
 }

@@ -2,6 +2,7 @@
 // the working precision double and both storages of the derived fields (float, double): the
 // host code (Simulation<double, CudaLauncher>) links against these. A pass that gains a kernel
 // adds its line here; the linker names any that is missing.
+#include "exasph/sph/block_kern.hpp"
 #include "exasph/sph/density_kern.hpp"
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
@@ -19,16 +20,29 @@ namespace exasph {
 #define EXASPH_CUDA_NEIGHBOURS(...)                                                                \
     template double CudaLauncher::for_each_neighbourhood<double, __VA_ARGS__>(                     \
         const DeviceLists<double>&, const __VA_ARGS__&);
+#define EXASPH_CUDA_FOR_EACH_OF(...)                                                               \
+    template void CudaLauncher::for_each_of<__VA_ARGS__>(const std::uint32_t*, std::size_t,        \
+                                                         const __VA_ARGS__&);
+#define EXASPH_CUDA_REDUCE_MIN_OF(...)                                                             \
+    template double CudaLauncher::reduce_min_of<__VA_ARGS__>(const std::uint32_t*, std::size_t,    \
+                                                             const __VA_ARGS__&);
+// A particle-wise pass that runs over all particles or the active ones (ParticleRange).
+#define EXASPH_CUDA_FOR_EACH_IN(...)                                                               \
+    EXASPH_CUDA_FOR_EACH(__VA_ARGS__) EXASPH_CUDA_FOR_EACH_OF(__VA_ARGS__)
 
+// The momentum-energy kernel as Simulation hands it over: in StoreResultKernel, which keeps each
+// particle's own Courant limit with block time steps (and reduces it with global steps).
+#define EXASPH_CUDA_MOMENTUM_AS(...)                                                               \
+    EXASPH_CUDA_NEIGHBOURS(StoreResultKernel<MomentumEnergyKernel<__VA_ARGS__>, double>)
 #define EXASPH_CUDA_MOMENTUM(N)                                                                    \
-    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, false, false, false, N>)                   \
-    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, false, false, true, N>)                    \
-    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, false, true, false, N>)                    \
-    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, false, true, true, N>)                     \
-    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, true, false, false, N>)                    \
-    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, true, false, true, N>)                     \
-    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, true, true, false, N>)                     \
-    EXASPH_CUDA_NEIGHBOURS(MomentumEnergyKernel<double, true, true, true, N>)
+    EXASPH_CUDA_MOMENTUM_AS(double, false, false, false, N)                                        \
+    EXASPH_CUDA_MOMENTUM_AS(double, false, false, true, N)                                         \
+    EXASPH_CUDA_MOMENTUM_AS(double, false, true, false, N)                                         \
+    EXASPH_CUDA_MOMENTUM_AS(double, false, true, true, N)                                          \
+    EXASPH_CUDA_MOMENTUM_AS(double, true, false, false, N)                                         \
+    EXASPH_CUDA_MOMENTUM_AS(double, true, false, true, N)                                          \
+    EXASPH_CUDA_MOMENTUM_AS(double, true, true, false, N)                                          \
+    EXASPH_CUDA_MOMENTUM_AS(double, true, true, true, N)
 
 #define EXASPH_CUDA_PASSES(N)                                                                      \
     EXASPH_CUDA_NEIGHBOURS(DensityEosKernel<double, N>)                                            \
@@ -37,13 +51,23 @@ namespace exasph {
     EXASPH_CUDA_NEIGHBOURS(SofteningForceKernel<double, N>)                                        \
     EXASPH_CUDA_MOMENTUM(N)                                                                        \
     EXASPH_CUDA_FOR_EACH(StateUpdateKernel<double, N>)                                             \
-    EXASPH_CUDA_FOR_EACH(SmoothingLengthKernel<double, N>)                                         \
-    EXASPH_CUDA_FOR_EACH(ViscosityKernel<double, N>)                                               \
-    EXASPH_CUDA_FOR_EACH(VolumeWeightKernel<double, N>)                                            \
+    EXASPH_CUDA_FOR_EACH_IN(SmoothingLengthKernel<double, N>)                                      \
+    EXASPH_CUDA_FOR_EACH_IN(ViscosityKernel<double, N>)                                            \
+    EXASPH_CUDA_FOR_EACH_IN(VolumeWeightKernel<double, N>)                                         \
     EXASPH_CUDA_FOR_EACH(StirKernel<double, N>)                                                    \
-    EXASPH_CUDA_REDUCE_MIN(AccelerationStepKernel<double, N>)
+    EXASPH_CUDA_REDUCE_MIN(AccelerationStepKernel<double, N>)                                      \
+    EXASPH_CUDA_BLOCK_STEPS(N)
+
+// Block time steps (sph/block_passes.hpp).
+#define EXASPH_CUDA_BLOCK_STEPS(N)                                                                 \
+    EXASPH_CUDA_FOR_EACH_OF(OwnStepLimitKernel<double, N>)                                         \
+    EXASPH_CUDA_REDUCE_MIN_OF(CloseStepKernel<double, N>)                                          \
+    EXASPH_CUDA_NEIGHBOURS(RungNeedKernel<double, N>)                                              \
+    EXASPH_CUDA_REDUCE_MIN(OpenStepKernel<double, N>)                                              \
+    EXASPH_CUDA_FOR_EACH(DriftKernel<double, N>)
 
 EXASPH_CUDA_PASSES(float)
 EXASPH_CUDA_PASSES(double)
+EXASPH_CUDA_REDUCE_MIN(ScaledValueKernel<double>)
 
 } // namespace exasph

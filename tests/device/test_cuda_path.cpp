@@ -54,3 +54,13 @@ TEST(CudaPath, VolumeElementsAndTheLimiterMatchTheCpuPath) {
     cfg.lattice = true;
     expect_same_run(cfg, 5);
 }
+
+// Issue 20: block time steps on the device (active-only lists, subset passes, the limiter's
+// atomic max in device memory) against the CPU path: Sedov -n 30, 40 sub-steps.
+TEST(CudaPath, BlockTimeStepsMatchTheCpuPath) {
+    if (!have_device()) GTEST_SKIP() << "no CUDA device visible: " << cuda::no_device_reason();
+    Config cfg = case_config("sedov", 30);
+    cfg.lattice = true;
+    cfg.timesteps = TimeStepping::block;
+    expect_same_run(cfg, 40);
+}

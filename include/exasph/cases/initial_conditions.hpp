@@ -32,8 +32,8 @@ void set_particle(ParticleSet<T>& ps, std::size_t s, std::uint64_t id, const dou
                   const double (&vel)[3], double dt0, double h, double m, double u) {
     ps.id[s] = id;
     for (int d = 0; d < 3; ++d) {
-        ps[static_cast<Field>(int(Field::x) + d)][s] = T(pos[d]);
-        ps[static_cast<Field>(int(Field::vx) + d)][s] = T(vel[d]);
+        ps[component(Field::x, d)][s] = T(pos[d]);
+        ps[component(Field::vx, d)][s] = T(vel[d]);
         ps[static_cast<Field>(int(Field::x_m1) + d)][s] = T(pos[d] - vel[d] * dt0);
     }
     ps[Field::h][s] = T(h);

@@ -111,7 +111,7 @@ class Domain {
 
     // Block time steps: each halo's value of v (owned, then halos) goes back to its owner, which
     // keeps the largest (return_halo_max).
-    void return_halo_max(std::vector<int>& v) {
+    void return_halo_max(FieldArray<int>& v) {
         exasph::return_halo_max(v, n_owned_, plan_, coll_.comm(), kTagHaloReturn);
     }
 
@@ -152,7 +152,7 @@ class Domain {
     // Local min/max of the owned positions as six SumMax elements (max of hi, max of -lo).
     static void local_extent(const ParticleSet<T>& ps, std::size_t n, SumMax* out) {
         for (int d = 0; d < 3; ++d) {
-            const T* c = ps.data(static_cast<Field>(static_cast<int>(Field::x) + d));
+            const T* c = ps.data(component(Field::x, d));
             double lo = std::numeric_limits<double>::infinity(), hi = -lo;
 #pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi)
             for (std::size_t i = 0; i < n; ++i) {

@@ -6,6 +6,7 @@
 #include "exasph/util/mpi.hpp"
 
 #include "exasph/domain/particle_exchange.hpp"
+#include "exasph/util/field_memory.hpp"
 
 namespace exasph {
 
@@ -74,7 +75,7 @@ void exchange_halo_fields(ParticleSet<T>& ps, std::size_t n_owned, const HaloPla
 // The reverse of a halo exchange: every halo's value in v[n_owned, n_owned + n_halo) goes back
 // to its owner, which keeps the largest of its own and those that come back (a particle may be a
 // halo on several ranks). Block time steps: the limiter's bound on a neighbour's rung.
-inline void return_halo_max(std::vector<int>& v, std::size_t n_owned, const HaloPlan& plan,
+inline void return_halo_max(FieldArray<int>& v, std::size_t n_owned, const HaloPlan& plan,
                             MPI_Comm comm, int tag) {
     const std::size_t np = plan.partners.size();
     std::vector<std::vector<int>> recv(np);

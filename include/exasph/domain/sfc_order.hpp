@@ -20,7 +20,7 @@ template <class T>
 void fit_open_axes(Box<T>& box, const ParticleSet<T>& ps) {
     for (int d = 0; d < 3; ++d) {
         if (box.periodic[d] || ps.size() == 0) continue;
-        const auto& c = ps[static_cast<Field>(static_cast<int>(Field::x) + d)];
+        const auto& c = ps[component(Field::x, d)];
         T lo = std::numeric_limits<T>::max(), hi = std::numeric_limits<T>::lowest();
 #pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi)
         for (std::size_t i = 0; i < c.size(); ++i) {

@@ -52,7 +52,7 @@ void write_position_rows(const h5::Group& g, const ParticleSet<T>& ps, std::size
     const std::uint64_t offset = global_offset(n_local, comm, n_global);
     std::vector<double> xyz(3 * n_local);
     for (std::size_t i = 0; i < n_local; ++i)
-        for (int d = 0; d < 3; ++d) xyz[3 * i + d] = ps.value(Field(int(Field::x) + d), i);
+        for (int d = 0; d < 3; ++d) xyz[3 * i + d] = ps.value(component(Field::x, d), i);
     h5::write_double_rows(g, "xyz", xyz.data(), n_local, 3, offset, n_global);
 }
 
@@ -126,7 +126,7 @@ void validate_input_particles(const ParticleSet<T>& ps, const std::string& path,
     }
     for (int d = 0; d < 3; ++d) {
         if (!box.periodic[d]) continue;
-        const auto& f = ps[static_cast<Field>(static_cast<int>(Field::x) + d)];
+        const auto& f = ps[component(Field::x, d)];
         for (std::size_t i = 0; i < ps.size(); ++i)
             if (!(f[i] >= box.lo[d] && f[i] < box.hi[d]))
                 throw input_error(path + ": particle id " + std::to_string(ps.id[i]) + " has " +

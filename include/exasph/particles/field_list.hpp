@@ -177,6 +177,15 @@ static_assert(int(Field::e33) - int(Field::e11) == 5, "the strain-rate fields ar
 EXASPH_HD constexpr Field strain_rate_field(int c) {
     return static_cast<Field>(int(Field::e11) + c);
 }
+// Component d (0, 1, 2) of a vector kept as three consecutive fields, named by its first: x,
+// x_m1, vx, ax, vhx. A function, not a table, so that device code can call it.
+static_assert(int(Field::z) - int(Field::x) == 2 && int(Field::z_m1) - int(Field::x_m1) == 2 &&
+                  int(Field::vz) - int(Field::vx) == 2 && int(Field::az) - int(Field::ax) == 2 &&
+                  int(Field::vhz) - int(Field::vhx) == 2,
+              "vector fields are consecutive");
+EXASPH_HD constexpr Field component(Field first, int d) {
+    return static_cast<Field>(int(first) + d);
+}
 // The artificial stress's matrix M_ij, row-major: component c is field s11 + c.
 static_assert(int(Field::s33) - int(Field::s11) == 8, "the stress matrix fields are contiguous");
 EXASPH_HD constexpr Field stress_matrix_field(int c) {

@@ -25,12 +25,12 @@ struct BlockStepInputs {
 
 // Block time steps (--timesteps block): the hierarchy's clock and the sub-step's active set.
 // A block runs from t0 to end in 2^kMaxRung ticks; at its first tick every particle is active
-// and the block's length is chosen (the largest own step limit, at most 2^kMaxRung times the
-// smallest, and no further than t_end). A sub-step computes forces for the particles active at
-// this tick, closes and reopens their steps (with the limiter's wake-ups), then drifts everyone
-// to the next tick at which any particle is active. Rollback points are taken at block
-// boundaries (at_boundary()), where every particle's state is synchronised; a checkpoint inside
-// a block holds the clock (where()) and the derived fields.
+// and the block's length is chosen (the smallest own step limit times the power of two that
+// reaches the largest, at most 2^kMaxRung, and no further than t_end). A sub-step computes forces
+// for the particles active at this tick, closes and reopens their steps (with the limiter's
+// wake-ups), then drifts everyone to the next tick at which any particle is active. Rollback points
+// are taken at block boundaries (at_boundary()), where every particle's state is synchronised; a
+// checkpoint inside a block holds the clock (where()) and the derived fields.
 template <class T, class L>
 class BlockClock {
   public:
@@ -38,12 +38,10 @@ class BlockClock {
 
     // Refuses what block steps do not handle yet; allocates the rung and half-step fields and
     // makes the derived fields move with the particles (inactive ones keep theirs).
-    BlockClock(ParticleSet<T>& ps, const Config& cfg, bool backend_ok, bool stir)
+    BlockClock(ParticleSet<T>& ps, const Config& cfg, bool stir)
         : limiter_(!cfg.no_timestep_limiter) {
-        if (!backend_ok || stir)
-            throw input_error(std::string("--timesteps block: not yet with ") +
-                                  (!backend_ok ? "--backend cuda (run with --backend cpu)"
-                                               : "driven turbulence (--stir-mach)"),
+        if (stir)
+            throw input_error("--timesteps block: not yet with driven turbulence (--stir-mach)",
                               true);
         for (Field f : {Field::rung, Field::vhx, Field::vhy, Field::vhz, Field::uh, Field::dtc})
             ps.enable(f);
@@ -86,7 +84,7 @@ class BlockClock {
     }
     const std::uint8_t* active() const { return active_.data(); }
     ParticleRange active_range() const { return {list_.data(), list_.size()}; }
-    const std::vector<std::uint32_t>& active_list() const { return list_; }
+    std::size_t active_count() const { return list_.size(); }
 
     // After the forces (Field::dtc holds each active particle's Courant limit): closes the
     // active particles' steps, chooses their rungs, applies the limiter (its bounds on halos go
@@ -96,9 +94,10 @@ class BlockClock {
     double choose(ParticleSet<T>& ps, std::size_t n, const Lists& nl, Domain<T>& dom,
                   const BlockStepInputs& in) {
         const double last = tick_ == 0 ? last_tick_dt_ : tick_dt_; // of the steps ending here
-        limit_own_steps<L>(ps, list_, in.first ? in.dt0 : 0.0, last, in.accel_eps);
+        limit_own_steps<L>(ps, active_range(), in.first ? in.dt0 : 0.0, last, in.accel_eps,
+                           tick_ == 0 ? 4.0 : 2.0);
         if (tick_ == 0) start_block(ps, n, dom, in);
-        close_steps<L>(ps, list_, 0.5 * last, tick_dt_ * kTicks, tick_, in.first);
+        close_steps<L>(ps, active_range(), 0.5 * last, tick_dt_ * kTicks, tick_, in.first);
         int* need = nullptr;
         if (limiter_) {
             need_.assign(ps.size(), -1);
@@ -131,7 +130,14 @@ class BlockClock {
         e[0].max = most;
         e[1].max = -least;
         dom.collectives().allreduce_sum_max(e);
-        double len = std::min(e[0].max, -e[1].max * kTicks);
+        // The smallest limit times the power of two that reaches the largest (at most 2^24):
+        // the particle with the smallest limit steps with all of it (the shortest step, which
+        // sets the number of sub-steps), each other one with the longest power-of-two multiple
+        // of it within its own. (Anchored at the largest limit instead, the shortest step lies
+        // between half the smallest limit and all of it: more sub-steps, and particles with
+        // nearly equal limits split between two rungs.)
+        double len = -e[1].max;
+        for (int k = 0; k < kMaxRung && len < e[0].max; ++k) len *= 2;
         t0_ = in.time;
         end_ = t0_ + len;
         if (in.t_end > 0 && end_ >= in.t_end) end_ = in.t_end;
@@ -141,9 +147,10 @@ class BlockClock {
     bool limiter_;
     std::int64_t tick_ = 0, next_ = 0;
     double t0_ = 0, end_ = 0, tick_dt_ = 0, last_tick_dt_ = 0;
-    std::vector<std::uint8_t> active_;
-    std::vector<std::uint32_t> list_;
-    std::vector<int> need_;
+    // Read by the kernels: FieldArrays, which the CUDA backend's device reads too.
+    FieldArray<std::uint8_t> active_;
+    FieldArray<std::uint32_t> list_;
+    FieldArray<int> need_;
 };
 
 } // namespace exasph

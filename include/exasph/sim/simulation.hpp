@@ -48,8 +48,7 @@ class Simulation {
         enable_run_fields(ps_, cfg, eos_, domain_.collectives());
         start_gravity(gravity_, ps_, box_, kernel_, cfg, cfg.G >= 0 ? cfg.G : ic.G);
         if (cfg.timesteps == TimeStepping::block) // the case's stirring when not given
-            blocks_.emplace(ps_, cfg, kBlockCapable,
-                            cfg.stir_mach < 0 ? ic.stir_mach > 0 : cfg.stir_mach > 0);
+            blocks_.emplace(ps_, cfg, cfg.stir_mach < 0 ? ic.stir_mach > 0 : cfg.stir_mach > 0);
         restart ? resume(*restart) : start();
         diagnose(0.0);
         stirring_ =
@@ -154,12 +153,9 @@ class Simulation {
   private:
     // Block time steps keep each particle's own Courant limit (Field::dtc) for its rung.
     auto own_limits_if_blocks() {
-        if constexpr (kBlockCapable)
-            return [dtc = blocks_ ? ps_.data(Field::dtc) : nullptr](auto kern) {
-                return StoreResultKernel<decltype(kern), T>{kern, dtc};
-            };
-        else
-            return AsIs{};
+        return [dtc = blocks_ ? ps_.data(Field::dtc) : nullptr](auto kern) {
+            return StoreResultKernel<decltype(kern), T>{kern, dtc};
+        };
     }
 
     void start() {
@@ -181,17 +177,12 @@ class Simulation {
     void find_neighbours() {
         SearchView<T> sv{ps_.data(Field::x), ps_.data(Field::y), ps_.data(Field::z),
                          ps_.data(Field::h)};
-        typename L::template Lists<T>::Result res;
-        if constexpr (kBlockCapable)
-            res = nlists_.build(domain_.local_tree(), &domain_.halo_tree(), sv, box_,
-                                NeighbourCriterion::symmetric, std::uint32_t(n_owned()),
-                                blocks_ ? blocks_->active() : nullptr);
-        else
-            res = nlists_.build(domain_.local_tree(), &domain_.halo_tree(), sv, box_,
-                                NeighbourCriterion::symmetric, std::uint32_t(n_owned()));
+        const auto res = nlists_.build(domain_.local_tree(), &domain_.halo_tree(), sv, box_,
+                                       NeighbourCriterion::symmetric, std::uint32_t(n_owned()),
+                                       blocks_ ? blocks_->active() : nullptr);
         max_list_ = res.max_count;
-        work_.active = double(blocks_ ? blocks_->active_list().size() : n_owned());
-        if constexpr (requires { res.pairs; }) work_.pairs = double(res.pairs);
+        work_.active = double(blocks_ ? blocks_->active_count() : n_owned());
+        work_.pairs = double(res.pairs);
     }
 
     // SPEC 3-6 (sim/hydro_forces.hpp).
@@ -206,14 +197,13 @@ class Simulation {
     // SPEC 7 (sim/global_step.hpp), or the rungs of block time steps (sim/block_clock.hpp).
     double choose_time_step() {
         const double accel = gravity_ ? cfg_.accel_eps : 0.0;
-        if constexpr (kBlockCapable)
-            if (blocks_) { // closing and opening the steps updates the state: check it first
-                if (safety_.changed_before_update(ps_, n_owned())) flags_.raise(kStateChanged);
-                const double dt = blocks_->choose(ps_, n_owned(), nlists_, domain_,
-                                                  {step_ == 0, dt0_, accel, time_, t_end_});
-                nlists_.release();
-                return dt;
-            }
+        if (blocks_) { // closing and opening the steps updates the state: check it first
+            if (safety_.changed_before_update(ps_, n_owned())) flags_.raise(kStateChanged);
+            const double dt = blocks_->choose(ps_, n_owned(), nlists_, domain_,
+                                              {step_ == 0, dt0_, accel, time_, t_end_});
+            nlists_.release();
+            return dt;
+        }
         return global_time_step<L>(ps_, n_owned(), courant_dt_, accel, domain_.collectives(),
                                    step_ == 0, dt0_, dt_m1_, time_, t_end_);
     }
@@ -223,9 +213,7 @@ class Simulation {
     void advance(double dt) {
         if (!blocks_ && safety_.changed_before_update(ps_, n_owned())) flags_.raise(kStateChanged);
         const ParticleRange own = blocks_ ? blocks_->active_range() : ParticleRange(n_owned());
-        double t_next = time_ + dt;
-        if constexpr (kBlockCapable)
-            if (blocks_) t_next = blocks_->drift_to_next(ps_, n_owned(), box_);
+        const double t_next = blocks_ ? blocks_->drift_to_next(ps_, n_owned(), box_) : time_ + dt;
         if (!blocks_) update_state<L>(ps_, n_owned(), box_, dt, dt_m1_);
         if (cfg_.av_switch)
             update_viscosity<L>(ps_, own, blocks_ ? -1.0 : dt, cfg_.alpha_min, cfg_.alpha);
@@ -292,7 +280,6 @@ class Simulation {
     ExactDensity exact_;
     std::optional<GravitySolver<T>> gravity_;
     std::optional<Stirring> stirring_;
-    static constexpr bool kBlockCapable = L::kBackend == Backend::openmp;
     std::optional<BlockClock<T, L>> blocks_; // --timesteps block
     StepWork work_;                          // this rank's
 };

@@ -18,22 +18,18 @@
 // (CloseStepKernel).
 namespace exasph {
 
-namespace block {
-inline constexpr Field kPos[3] = {Field::x, Field::y, Field::z};
-inline constexpr Field kVel[3] = {Field::vx, Field::vy, Field::vz};
-inline constexpr Field kHalf[3] = {Field::vhx, Field::vhy, Field::vhz};
-inline constexpr Field kAcc[3] = {Field::ax, Field::ay, Field::az};
-} // namespace block
-
 // The particle's own step limit (Field::dtc holds this step's Courant limit, SPEC 7): with
-// gravity also sqrt(eps h / |a|); at most twice its last step (the rung falls by one at most),
-// and at the start of the run at most the case's first step.
+// gravity also sqrt(eps h / |a|); at most `growth` times its last step, and at the start of the
+// run at most the case's first step. Inside a block growth is 2 (the rung falls by one at
+// most); at a block's start 4, since the new block's rungs are anchored afresh (at the smallest
+// limit) and rounding down to them may take back up to half: a step can still double there.
 template <class T, class N = float>
 struct OwnStepLimitKernel {
     ParticleView<T, N> p;
     double first_dt;     // > 0: the first step of the run
     double last_tick_dt; // the tick length of the particle's last step
     double accel_eps;    // 0: no acceleration limit
+    double growth;       // 2, or 4 at a block's start
 
     EXASPH_HD void operator()(std::uint32_t i) const {
         double dt = double(p[Field::dtc][i]);
@@ -44,7 +40,7 @@ struct OwnStepLimitKernel {
         if (first_dt > 0)
             dt = std::min(dt, first_dt);
         else
-            dt = std::min(dt, 2.0 * double(rung_ticks(int(p[Field::rung][i]))) * last_tick_dt);
+            dt = std::min(dt, growth * double(rung_ticks(int(p[Field::rung][i]))) * last_tick_dt);
         p[Field::dtc][i] = T(dt);
     }
 };
@@ -65,7 +61,8 @@ struct CloseStepKernel {
         if (!first) {
             const T hs = T(double(rung_ticks(old)) * half_tick_dt);
             for (int d = 0; d < 3; ++d)
-                p[block::kVel[d]][i] = p[block::kHalf[d]][i] + p[block::kAcc[d]][i] * hs;
+                p[component(Field::vx, d)][i] =
+                    p[component(Field::vhx, d)][i] + p[component(Field::ax, d)][i] * hs;
             p[Field::u][i] = p[Field::uh][i] + p[Field::du][i] * hs;
         }
         const int r = rung_for_step(double(p[Field::dtc][i]), block_dt);
@@ -111,7 +108,8 @@ struct OpenStepKernel {
             if (bound > r) r = aligned_rung(tick, bound);
             const T hs = T(double(rung_ticks(r)) * half_tick_dt);
             for (int d = 0; d < 3; ++d)
-                p[block::kHalf[d]][i] = p[block::kVel[d]][i] + p[block::kAcc[d]][i] * hs;
+                p[component(Field::vhx, d)][i] =
+                    p[component(Field::vx, d)][i] + p[component(Field::ax, d)][i] * hs;
             p[Field::uh][i] = p[Field::u][i] + p[Field::du][i] * hs;
             p[Field::rung][i] = T(r);
             p[Field::dtc][i] = T(2) * hs; // the step taken (the AV switch evolves over it)
@@ -135,22 +133,31 @@ struct DriftKernel {
     double tick_dt;
 
     EXASPH_HD void operator()(std::uint32_t i) const {
-        const Field prev[3] = {Field::x_m1, Field::y_m1, Field::z_m1};
         for (int d = 0; d < 3; ++d) { // x_m1: where this sub-step's densities were computed
-            const T x0 = p[block::kPos[d]][i];
-            const T x = x0 + p[block::kHalf[d]][i] * dt;
+            const T x0 = p[component(Field::x, d)][i];
+            const T x = x0 + p[component(Field::vhx, d)][i] * dt;
             const T shift = box.wrap_shift(x, d);
-            p[block::kPos[d]][i] = x + shift;
-            p[prev[d]][i] = x0 + shift;
+            p[component(Field::x, d)][i] = x + shift;
+            p[component(Field::x_m1, d)][i] = x0 + shift;
         }
         const int r = int(p[Field::rung][i]);
         const std::int64_t s = rung_ticks(r);
         const double from_mid = double(next - rung_step_start(next, r)) - 0.5 * double(s);
         const T since = T(from_mid * tick_dt);
         for (int d = 0; d < 3; ++d)
-            p[block::kVel[d]][i] = p[block::kHalf[d]][i] + p[block::kAcc[d]][i] * since;
+            p[component(Field::vx, d)][i] =
+                p[component(Field::vhx, d)][i] + p[component(Field::ax, d)][i] * since;
         p[Field::u][i] = p[Field::uh][i] + p[Field::du][i] * since;
     }
+};
+
+// s * v[i]: the extremes of a per-particle value as minima (the blocks' own step limits).
+template <class T>
+struct ScaledValueKernel {
+    const T* v;
+    double s;
+
+    EXASPH_HD double operator()(std::uint32_t i) const { return s * double(v[i]); }
 };
 
 // Stores a neighbour kernel's result per particle instead of reducing it (block time steps: each

@@ -8,19 +8,20 @@
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/sph/block_kern.hpp"
 #include "exasph/sph/launch.hpp"
+#include "exasph/sph/passes.hpp"
 #include "exasph/util/error.hpp"
 
 // The passes of block time steps (sph/block_kern.hpp) over the active particles `idx` or over
-// all owned particles [0, n). Only launchers with subset loops (OmpLauncher) run them.
+// all owned particles [0, n), on any launcher.
 namespace exasph {
 
 template <class L = DefaultLauncher, class T>
-void limit_own_steps(ParticleSet<T>& ps, const std::vector<std::uint32_t>& idx, double first_dt,
-                     double last_tick_dt, double accel_eps) {
+void limit_own_steps(ParticleSet<T>& ps, const ParticleRange& idx, double first_dt,
+                     double last_tick_dt, double accel_eps, double growth) {
     with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
-        L::for_each_of(idx.data(), idx.size(),
-                       OwnStepLimitKernel<T, N>{p, first_dt, last_tick_dt, accel_eps});
+        L::for_each_of(idx.idx, idx.n,
+                       OwnStepLimitKernel<T, N>{p, first_dt, last_tick_dt, accel_eps, growth});
     });
 }
 
@@ -28,18 +29,18 @@ void limit_own_steps(ParticleSet<T>& ps, const std::vector<std::uint32_t>& idx, 
 template <class L = DefaultLauncher, class T>
 std::pair<double, double> own_step_extremes(const ParticleSet<T>& ps, std::size_t n) {
     const T* dt = ps.data(Field::dtc);
-    const double least = L::reduce_min(n, [dt](std::uint32_t i) { return double(dt[i]); });
-    const double most = -L::reduce_min(n, [dt](std::uint32_t i) { return -double(dt[i]); });
+    const double least = L::reduce_min(n, ScaledValueKernel<T>{dt, 1.0});
+    const double most = -L::reduce_min(n, ScaledValueKernel<T>{dt, -1.0});
     return {least, most};
 }
 
 // Throws Error naming a particle whose limit is below the shortest rung of the block.
 template <class L = DefaultLauncher, class T>
-void close_steps(ParticleSet<T>& ps, const std::vector<std::uint32_t>& idx, double half_tick_dt,
-                 double block_dt, std::int64_t tick, bool first) {
+void close_steps(ParticleSet<T>& ps, const ParticleRange& idx, double half_tick_dt, double block_dt,
+                 std::int64_t tick, bool first) {
     const double bad = with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
-        return L::reduce_min_of(idx.data(), idx.size(),
+        return L::reduce_min_of(idx.idx, idx.n,
                                 CloseStepKernel<T, N>{p, half_tick_dt, block_dt, tick, first});
     });
     if (bad < 1e300)

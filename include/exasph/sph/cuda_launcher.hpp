@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <cstdint>
 
 #include "exasph/sph/launch.hpp"
 #include "exasph/tree/device_lists.hpp"
@@ -21,6 +22,12 @@ struct CudaLauncher {
     static void for_each(std::size_t n, const Kernel& k);
     template <class Kernel>
     static double reduce_min(std::size_t n, const Kernel& k);
+    // The particles idx[0, n) (block time steps' active ones): idx must be device-readable
+    // (FieldArray, managed memory).
+    template <class Kernel>
+    static void for_each_of(const std::uint32_t* idx, std::size_t n, const Kernel& k);
+    template <class Kernel>
+    static double reduce_min_of(const std::uint32_t* idx, std::size_t n, const Kernel& k);
     template <class T, class Kernel>
     static double for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k);
 };

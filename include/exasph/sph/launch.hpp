@@ -93,9 +93,9 @@ struct OmpLauncher : OmpParticleLoops {
     }
 };
 
-// The GPU path on the host: the device's interleaved lists and search (BatchLists), one particle
-// per iteration as one CUDA thread would run it. Same kernels, same results as OmpLauncher
-// (the lists hold the same neighbours in the same order).
+// The GPU path on the host: the device's interleaved lists and search (BatchLists), one list
+// slot (particle member(s)) per iteration as one CUDA thread would run it. Same kernels, same
+// results as OmpLauncher (the lists hold the same neighbours in the same order).
 struct GpuHostLauncher : OmpParticleLoops {
     static constexpr Backend kBackend = Backend::gpu_host;
     template <class T>
@@ -106,11 +106,12 @@ struct GpuHostLauncher : OmpParticleLoops {
         const auto n = static_cast<std::int64_t>(nl.size());
         double least = std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(dynamic, kBatch) reduction(min : least)
-        for (std::int64_t i = 0; i < n; ++i) {
+        for (std::int64_t s = 0; s < n; ++s) {
+            const auto slot = std::uint32_t(s);
             if constexpr (kReduces<Kernel>)
-                least = std::min(least, double(k(std::uint32_t(i), nl.span(std::uint32_t(i)))));
+                least = std::min(least, double(k(nl.member(slot), nl.span(slot))));
             else
-                k(std::uint32_t(i), nl.span(std::uint32_t(i)));
+                k(nl.member(slot), nl.span(slot));
         }
         return least;
     }

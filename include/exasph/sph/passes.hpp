@@ -16,11 +16,11 @@
 
 // The SPH passes of a step: each builds its kernel (a functor from sph/*_kern.hpp) over a view of
 // the particles and hands it to the launcher L (sph/launch.hpp). Neighbour passes run over the
-// particles that have lists (the owned ones, [0, nl.size())).
+// particles that have lists (the owned ones, or with block time steps the active ones).
 namespace exasph {
 
 // The particles a particle-wise pass runs over: the first n, or the n listed in idx (block time
-// steps: the active ones; only launchers with subset loops run those).
+// steps: the active ones; a FieldArray, which the CUDA backend's device reads).
 struct ParticleRange {
     std::size_t n = 0;
     const std::uint32_t* idx = nullptr;
@@ -30,11 +30,10 @@ struct ParticleRange {
 
 template <class L, class Kernel>
 void for_each_in(const ParticleRange& r, const Kernel& k) {
-    if (!r.idx) return L::for_each(r.n, k);
-    if constexpr (requires { L::for_each_of(r.idx, r.n, k); })
+    if (r.idx)
         L::for_each_of(r.idx, r.n, k);
     else
-        throw Error("this backend has no passes over a subset of the particles");
+        L::for_each(r.n, k);
 }
 
 // A neighbour kernel as it is (the default of compute_momentum_energy's `wrap`).

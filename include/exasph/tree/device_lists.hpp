@@ -31,7 +31,8 @@ class DeviceBuffer {
 // The neighbour lists of the CUDA backend, in device memory: the search of
 // tree/batch_search.hpp run one thread per particle (count, size the batches as BatchLists does,
 // then write the interleaved lists). The trees are copied to the device each build. Same
-// interface as NeighbourLists and BatchLists; the definitions are in src/cuda/device_lists.cu.
+// interface as NeighbourLists and BatchLists (with `active`: lists for the active particles
+// only, slot s of particle member()[s]); the definitions are in src/cuda/device_lists.cu.
 template <class T>
 class DeviceLists {
   public:
@@ -40,21 +41,29 @@ class DeviceLists {
     struct Result {
         std::uint32_t max_count = 0;
         bool exceeded = false;
+        std::uint64_t pairs = 0; // sum of the list lengths: the pair terms of one pass
     };
 
+    // `active` is read on the host (the flags of the owned particles).
     Result build(const Octree<T>& owned, const Octree<T>* halos, const SearchView<T>& p,
-                 const Box<T>& box, NeighbourCriterion crit, std::uint32_t n_owned);
+                 const Box<T>& box, NeighbourCriterion crit, std::uint32_t n_owned,
+                 const std::uint8_t* active = nullptr);
 
-    std::size_t size() const { return n_; }
+    std::size_t size() const { return n_; } // slots (particles with a list)
     std::uint32_t max_count() const { return max_count_; }
     // Device pointers for the launcher: the lists, the batches' first slots and the counts.
     const std::uint32_t* index() const { return static_cast<const std::uint32_t*>(index_.get()); }
     const std::uint64_t* offset() const { return static_cast<const std::uint64_t*>(offset_.get()); }
     const std::uint32_t* count() const { return static_cast<const std::uint32_t*>(count_.get()); }
+    // The particle of each slot; nullptr: slot s is particle s.
+    const std::uint32_t* member() const {
+        return host_members_.empty() ? nullptr : static_cast<const std::uint32_t*>(member_.get());
+    }
     // The list of particle i, copied to the host (tests, error messages).
     std::vector<std::uint32_t> list(std::uint32_t i) const;
     std::size_t bytes() const {
-        return index_.capacity() + offset_.capacity() + count_.capacity() + nodes_.capacity();
+        return index_.capacity() + offset_.capacity() + count_.capacity() + nodes_.capacity() +
+               member_.capacity();
     }
     void release();
 
@@ -64,7 +73,8 @@ class DeviceLists {
     std::size_t n_ = 0;
     std::vector<std::uint32_t> host_count_;
     std::vector<std::uint64_t> host_offset_;
-    DeviceBuffer index_, offset_, count_, nodes_;
+    std::vector<std::uint32_t> host_members_;
+    DeviceBuffer index_, offset_, count_, nodes_, member_;
 };
 
 } // namespace exasph

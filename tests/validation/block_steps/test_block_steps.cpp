@@ -1,7 +1,7 @@
 // Block time steps (issue 20): Sedov with each particle on its own power-of-two rung against the
 // same run with one global step (acceptance 1, at -n 30 to keep CI short; -n 50 is the bench),
-// the limiter's effect (acceptance 2, -n 50) and the work of a sub-step following its active
-// particles (acceptance 5).
+// the limiter's effect (acceptance 2, -n 40 to t = 0.1) and the work of a sub-step following its
+// active particles (acceptance 5).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,12 +25,11 @@ struct SedovOutcome {
 };
 
 // The std scheme (the paper's), whose cheap pair loop makes the limiter's case the clearest.
-SedovOutcome run_sedov(int side, TimeStepping ts, bool limiter = true) {
+SedovOutcome run_sedov(int side, TimeStepping ts, bool limiter = true, double t_end = 0.05) {
     Config cfg = testref::case_config("sedov", side);
     apply_scheme(cfg, Scheme::std_sph);
     cfg.timesteps = ts;
     cfg.no_timestep_limiter = !limiter;
-    const double t_end = 0.05;
     Simulation<double> sim(cfg, make_case(cfg));
     const double e0 = sim.diagnostics().etot;
     sim.set_end_time(t_end);
@@ -77,12 +76,14 @@ TEST(BlockSteps, SedovMatchesGlobalStepsWithLessWork) {
     EXPECT_LT(block.pairs_sum, 0.5 * global.pairs_sum);
 }
 
-// Acceptance 2 at -n 50: without the limiter, cold particles on long steps meet the shock late
-// and the total energy drifts by about 1 % (measured 1.05e-2); with it, 0.12 %.
+// Acceptance 2 at -n 40 to t = 0.1: without the limiter, cold particles on long steps meet the
+// shock late and the total energy drifts by several per cent (measured 3.7e-2); with it, 0.13 %.
+// (The hierarchy deepens with time and resolution: at -n 30, or to t = 0.05, the difference is
+// within the noise.)
 TEST(BlockSteps, TheLimiterKeepsTheShockEnergyConserved) {
-    const SedovOutcome with = run_sedov(50, TimeStepping::block);
-    const SedovOutcome without = run_sedov(50, TimeStepping::block, false);
+    const SedovOutcome with = run_sedov(40, TimeStepping::block, true, 0.1);
+    const SedovOutcome without = run_sedov(40, TimeStepping::block, false, 0.1);
     EXPECT_LE(with.energy_error, 0.005);
-    EXPECT_GT(without.energy_error, 0.005);
+    EXPECT_GT(without.energy_error, 0.01);
     EXPECT_GT(without.energy_error, 4 * with.energy_error);
 }
