@@ -19,10 +19,11 @@
 namespace exasph {
 
 // The particle's own step limit (Field::dtc holds this step's Courant limit, SPEC 7): with
-// gravity also sqrt(eps h / |a|); at most `growth` times its last step, and at the start of the
-// run at most the case's first step. Inside a block growth is 2 (the rung falls by one at
-// most); at a block's start 4, since the new block's rungs are anchored afresh (at the smallest
-// limit) and rounding down to them may take back up to half: a step can still double there.
+// gravity also sqrt(eps h / |a|); the energy criterion (energy_time_step, k_u = 0.3); at most
+// `growth` times its last step, and at the start of the run at most the case's first step. Inside a
+// block growth is 2 (the rung falls by one at most); at a block's start 4, since the new block's
+// rungs are anchored afresh (at the smallest limit) and rounding down to them may take back up to
+// half: a step can still double there.
 template <class T, class N = float>
 struct OwnStepLimitKernel {
     ParticleView<T, N> p;
@@ -37,6 +38,7 @@ struct OwnStepLimitKernel {
             dt = std::min(dt, acceleration_time_step(
                                   double(p[Field::h][i]), double(p[Field::ax][i]),
                                   double(p[Field::ay][i]), double(p[Field::az][i]), accel_eps));
+        dt = std::min(dt, double(energy_time_step(p[Field::u][i], p[Field::du][i], T(0.3))));
         if (first_dt > 0)
             dt = std::min(dt, first_dt);
         else

@@ -21,6 +21,16 @@ EXASPH_HD T acceleration_time_step(T h, T ax, T ay, T az, T eps) {
     return a > T(0) ? std::sqrt(eps * h / a) : T(1e300);
 }
 
+// Block time steps' energy criterion: a particle losing internal energy may lose at most the
+// fraction k_u of it over a step at its current rate, dt <= k_u u / |du| (no limit while u
+// grows). The leapfrog kicks u by du dt/2 twice with the rates at both ends; the Courant limit
+// bounds adiabatic cooling (|du| / u = (gamma - 1) |div v| <= (gamma - 1) v_sig / h) but not
+// conduction, which can drain a hot particle next to cold ones within one long step.
+template <class T>
+EXASPH_HD T energy_time_step(T u, T du, T k_u) {
+    return du < T(0) ? k_u * u / -du : T(1e300);
+}
+
 // The global step: the smallest particle limit, never more than `growth` times the previous step.
 inline double limit_time_step(double dt_courant, double dt_prev, double growth = 1.1) {
     double cap = growth * dt_prev;
