@@ -3,6 +3,7 @@
 // errors; nothing here runs.
 #include <cstdint>
 
+#include "exasph/sph/block_kern.hpp"
 #include "exasph/sph/density_kern.hpp"
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
@@ -51,6 +52,12 @@ void instantiate(ParticleView<T> p, Box<T> box, KernelView<T> kv, const std::uin
     particle_pass<<<1, 32>>>(ViscosityKernel<T>{p, T(1), T(0.05), T(1), T(0.2)}, 32, out);
     particle_pass<<<1, 32>>>(VolumeWeightKernel<T>{p}, 32, out);
     particle_pass<<<1, 32>>>(AccelerationStepKernel<T>{p, 0.2}, 32, out);
+    // Block time steps (sph/block_kern.hpp).
+    particle_pass<<<1, 32>>>(OwnStepLimitKernel<T>{p, 0.0, 1e-3, 0.1, 2.0}, 32, out);
+    particle_pass<<<1, 32>>>(CloseStepKernel<T>{p, 1e-3, 1.0, 0, false}, 32, out);
+    neighbour_pass<<<1, 32>>>(RungNeedKernel<T>{p, nullptr}, lists, 8, 32, out);
+    particle_pass<<<1, 32>>>(OpenStepKernel<T>{p, nullptr, nullptr, 1e-3, 0}, 32, out);
+    particle_pass<<<1, 32>>>(DriftKernel<T>{p, box, T(1e-3), 1, 1e-3}, 32, out);
 }
 
 } // namespace
