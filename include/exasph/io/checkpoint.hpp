@@ -110,7 +110,7 @@ void read_derived_fields(const h5::File& file, ParticleSet<T>& ps, MPI_Comm comm
     const std::vector<std::uint64_t> ids = ps.id;
     read_particle_fields(derived, ps, required, optional, true, comm);
     int same = ps.id == ids;
-    MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_LAND, comm);
+    MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm); // all ranks: 1
     if (!same) throw input_error(file.path() + ": /derived/id differs from /state/id", true);
 }
 
