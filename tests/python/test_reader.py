@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The Python reader (python/exasph, issue 22) against a 3-rank run: snapshots, a checkpoint,
-the diagnostics table, radial profiles, the exact solution, its errors, and a pip install of
-the folder. Run by CTest as  test_reader.py --exe build/exasph --mpirun "mpirun ..."."""
+the diagnostics table, the communication matrix (issue 23), radial profiles, the exact solution,
+its errors, and a pip install of the folder. Run by CTest as  test_reader.py --exe build/exasph --mpirun "mpirun ..."."""
 import argparse
 import shlex
 import shutil
@@ -79,6 +79,33 @@ def check_profiles(s, exe):
     print(f"profiles: exact Sedov peak {ex['rho'][k]:.4f} at r = {ex['r'][k]:.4f}")
 
 
+def check_comm_matrix(run, w, out):
+    """--comm-report (issue 23): what each rank sent is what its peers received; the tool draws
+    it; the summary names the peers."""
+    assert "communication: halo peers per rank mean 2.0 max 2;" in out, out[-600:]
+    for kind in ("halo", "migration"):
+        sent = exasph.load_comm_matrix(run, kind, "sent_bytes")
+        received = exasph.load_comm_matrix(run, kind, "received_bytes")
+        assert sent.shape == (3, 3), sent.shape
+        assert np.array_equal(sent, received.T), (kind, sent, received)
+        assert np.all(np.diag(sent) == 0), sent
+    assert exasph.load_comm_matrix(run, "halo").min() >= 0
+    assert np.count_nonzero(exasph.load_comm_matrix(run, "halo")) == 6
+    png = w / "matrix.png"
+    res = subprocess.run([sys.executable, str(ROOT / "tools" / "comm_matrix.py"), str(run), "-o",
+                          str(png)], capture_output=True, text=True)
+    assert res.returncode == 0 and png.stat().st_size > 1000, res.stderr
+    assert res.stdout.startswith("3 ranks, halo peers per rank mean 2.00 max 2"), res.stdout
+    expect_error("no such file", exasph.load_comm_matrix, w / "nothing")
+    expect_error("traffic must be one of", exasph.load_comm_matrix, run, "email")
+    bad = w / "bad.csv"
+    bad.write_text("step,time\n1,2\n")
+    expect_error("not an exasph comm_matrix.csv", exasph.load_comm_matrix, bad)
+    res = subprocess.run([sys.executable, str(ROOT / "tools" / "comm_matrix.py"), str(bad)],
+                         capture_output=True, text=True)
+    assert res.returncode == 2 and res.stderr.count("\n") == 1, res.stderr
+
+
 def check_import_from_repo():
     """`python3 -c "import exasph"` in the repository's root (exasph -> python/exasph)."""
     p = subprocess.run([sys.executable, "-c", "import exasph; print(exasph.load_snapshot)"],
@@ -107,9 +134,11 @@ def main():
     with tempfile.TemporaryDirectory() as w:
         w = Path(w)
         run = w / "run"
-        subprocess.run(shlex.split(a.mpirun) + ["-np", "3", a.exe, "--init", "sedov", "-n", "10",
-                       "--lattice", "-s", "4", "-w", "2", "--checkpoint-every", "4",
-                       "--threads", "1", "--out", str(run)], check=True, capture_output=True)
+        out = subprocess.run(shlex.split(a.mpirun) + ["-np", "3", a.exe, "--init", "sedov", "-n",
+                             "10", "--lattice", "-s", "4", "-w", "2", "--checkpoint-every", "4",
+                             "--threads", "1", "--comm-report", "--out", str(run)],
+                             check=True, capture_output=True, text=True).stdout
+        check_comm_matrix(run, w, out)
         s = check_snapshot(run)
         check_diagnostics(run, w)
         check_profiles(s, a.exe)

@@ -24,6 +24,7 @@ struct Config {
     std::int64_t steps = -1;           // -s; < 0: not given
     double t_end = -1.0;               // --t-end; < 0: not given
     std::string out_dir = "exasph-output";
+    bool comm_report = false; // OUT/comm_matrix.csv at the end
     // The formulation: a scheme names the values of the parameters from alpha to
     // volume_elements (config/scheme.hpp); Config{} is the std scheme.
     Scheme scheme = Scheme::std_sph;

@@ -216,6 +216,10 @@ inline const std::array kParameters{
     Param{"-f,--fields", "fields", "Snapshot fields, comma-separated (default: every snapshot "
           "field the run carries); x,y,z are always written", "", OnRestart::given,
           &Config::snapshot_fields, {}, false, ','},
+    Param{"--comm-report", "comm_report", "Write OUT/comm_matrix.csv at the end: per rank, "
+          "peer and kind of traffic (halo, migration, gravity), the point-to-point messages and "
+          "bytes sent and received (tools/comm_matrix.py draws it)", "", OnRestart::given,
+          &Config::comm_report},
     Param{"--checkpoint-every", "checkpoint_every", "Write a checkpoint every N steps (also at "
           "the end of the run), or 'auto': every sqrt(2 C M) s of wall time (Young/Daly) from the "
           "measured checkpoint cost C and the run's MTBF M = --mtbf / nodes", "",

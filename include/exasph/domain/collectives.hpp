@@ -5,6 +5,8 @@
 
 #include "exasph/util/mpi.hpp"
 
+#include "exasph/domain/comm_record.hpp"
+
 namespace exasph {
 
 // An element reduced with "sum" on its first member and "max" on its second. Reducing arrays of
@@ -29,6 +31,8 @@ inline void sum_max_op(void* in, void* inout, int* len, MPI_Datatype*) {
 
 // The collectives of the step, counted: the hot path has exactly three per step (global tree
 // counts + hmax, minimum time step, conservation sums + next box), and tests check the counter.
+// It also keeps the record of the point-to-point traffic (record(): halos, migration, gravity),
+// filled by the functions that post those messages.
 class Collectives {
   public:
     explicit Collectives(MPI_Comm comm) : comm_(comm) {
@@ -37,6 +41,7 @@ class Collectives {
         MPI_Type_contiguous(2, MPI_DOUBLE, &type_);
         MPI_Type_commit(&type_);
         MPI_Op_create(&detail::sum_max_op, 1, &op_);
+        record_ = CommRecord(size_);
     }
     ~Collectives() {
         int finalized = 0;
@@ -62,6 +67,8 @@ class Collectives {
     int rank() const { return rank_; }
     int size() const { return size_; }
     std::int64_t count() const { return count_; }
+    CommRecord& record() { return record_; }
+    const CommRecord& record() const { return record_; }
 
   private:
     MPI_Comm comm_;
@@ -69,6 +76,7 @@ class Collectives {
     MPI_Datatype type_{};
     MPI_Op op_{};
     std::int64_t count_ = 0;
+    CommRecord record_;
 };
 
 } // namespace exasph

@@ -85,8 +85,9 @@ class Domain {
         std::vector<int> dest(ps.size());
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < ps.size(); ++i) dest[i] = asg_.owner[leaf_[i]];
-        const bool moved = migrate_particles(ps, dest, coll_.rank(), coll_.size(),
-                                             asg_.count[coll_.rank()], coll_.comm(), kTagMigrate);
+        const bool moved =
+            migrate_particles(ps, dest, coll_.rank(), coll_.size(), asg_.count[coll_.rank()],
+                              coll_.comm(), kTagMigrate, coll_.record());
         n_owned_ = ps.size();
         std::vector<int>().swap(dest); // the sort below is the step's memory peak
         std::vector<std::uint32_t>().swap(leaf_);
@@ -106,13 +107,13 @@ class Domain {
     // Sends the fields carrying `roles` from owners to the halo copies.
     void exchange_halos(ParticleSet<T>& ps, std::uint8_t roles) {
         exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{ps.fields(roles), false},
-                             coll_.comm(), kTagHalo);
+                             coll_.comm(), kTagHalo, coll_.record());
     }
 
     // Block time steps: each halo's value of v (owned, then halos) goes back to its owner, which
     // keeps the largest (return_halo_max).
     void return_halo_max(FieldArray<int>& v) {
-        exasph::return_halo_max(v, n_owned_, plan_, coll_.comm(), kTagHaloReturn);
+        exasph::return_halo_max(v, n_owned_, plan_, coll_.comm(), kTagHaloReturn, coll_.record());
     }
 
     std::size_t n_owned() const {
@@ -135,6 +136,9 @@ class Domain {
     }
     Collectives& collectives() {
         return coll_;
+    }
+    const CommRecord& comm_record() const {
+        return coll_.record();
     }
     MPI_Comm comm() const {
         return coll_.comm();
@@ -232,10 +236,10 @@ class Domain {
         plan_.partners = halo_partners(index_, asg_, coll_.rank(), box);
         plan_halo_sends(plan_, index_, local_tree_, ps.data(Field::x), ps.data(Field::y),
                         ps.data(Field::z), ps.data(Field::h), coll_.rank(), box);
-        exchange_halo_counts(plan_, coll_.comm(), kTagHaloCount);
+        exchange_halo_counts(plan_, coll_.comm(), kTagHaloCount, coll_.record());
         ps.resize(n_owned_ + plan_.n_halo);
         exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{ps.fields(kHaloSync), true},
-                             coll_.comm(), kTagHalo);
+                             coll_.comm(), kTagHalo, coll_.record());
         // Sources own ascending key ranges and send in SFC order: the halos arrive sorted.
         std::vector<std::uint64_t> hkeys(plan_.n_halo);
         compute_sfc_keys(ps.data(Field::x) + n_owned_, ps.data(Field::y) + n_owned_,

@@ -5,6 +5,7 @@
 
 #include "exasph/util/mpi.hpp"
 
+#include "exasph/domain/comm_record.hpp"
 #include "exasph/domain/particle_exchange.hpp"
 #include "exasph/util/field_memory.hpp"
 
@@ -21,7 +22,7 @@ struct HaloPlan {
 };
 
 // Learns how many halos each partner sends (point-to-point with partners only).
-inline void exchange_halo_counts(HaloPlan& plan, MPI_Comm comm, int tag) {
+inline void exchange_halo_counts(HaloPlan& plan, MPI_Comm comm, int tag, CommRecord& rec) {
     const std::size_t np = plan.partners.size();
     std::vector<std::uint64_t> send_count(np);
     plan.recv_count.assign(np, 0);
@@ -30,6 +31,8 @@ inline void exchange_halo_counts(HaloPlan& plan, MPI_Comm comm, int tag) {
         send_count[k] = plan.send[k].size();
         MPI_Irecv(&plan.recv_count[k], 1, MPI_UINT64_T, plan.partners[k], tag, comm, &reqs[k]);
         MPI_Isend(&send_count[k], 1, MPI_UINT64_T, plan.partners[k], tag, comm, &reqs[np + k]);
+        rec.received(plan.partners[k], Traffic::halo, sizeof(std::uint64_t));
+        rec.sent(plan.partners[k], Traffic::halo, sizeof(std::uint64_t));
     }
     MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
     plan.recv_offset.resize(np);
@@ -44,7 +47,7 @@ inline void exchange_halo_counts(HaloPlan& plan, MPI_Comm comm, int tag) {
 // halos into [n_owned, n_owned + n_halo) (MPI_Isend / MPI_Irecv, partners only).
 template <class T>
 void exchange_halo_fields(ParticleSet<T>& ps, std::size_t n_owned, const HaloPlan& plan,
-                          const FieldSelection& sel, MPI_Comm comm, int tag) {
+                          const FieldSelection& sel, MPI_Comm comm, int tag, CommRecord& rec) {
     const std::size_t np = plan.partners.size();
     const std::size_t per = sel.doubles_per_particle();
     std::vector<std::vector<double>> recv(np), send(np);
@@ -56,6 +59,7 @@ void exchange_halo_fields(ParticleSet<T>& ps, std::size_t n_owned, const HaloPla
         reqs.emplace_back();
         MPI_Irecv(recv[k].data(), int(recv[k].size()), MPI_DOUBLE, plan.partners[k], tag, comm,
                   &reqs.back());
+        rec.received(plan.partners[k], Traffic::halo, recv[k].size() * sizeof(double));
     }
     for (std::size_t k = 0; k < np; ++k) {
         if (plan.send[k].empty()) continue;
@@ -64,6 +68,7 @@ void exchange_halo_fields(ParticleSet<T>& ps, std::size_t n_owned, const HaloPla
         reqs.emplace_back();
         MPI_Isend(send[k].data(), int(send[k].size()), MPI_DOUBLE, plan.partners[k], tag, comm,
                   &reqs.back());
+        rec.sent(plan.partners[k], Traffic::halo, send[k].size() * sizeof(double));
     }
     MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
     for (std::size_t k = 0; k < np; ++k)
@@ -76,7 +81,7 @@ void exchange_halo_fields(ParticleSet<T>& ps, std::size_t n_owned, const HaloPla
 // to its owner, which keeps the largest of its own and those that come back (a particle may be a
 // halo on several ranks). Block time steps: the limiter's bound on a neighbour's rung.
 inline void return_halo_max(FieldArray<int>& v, std::size_t n_owned, const HaloPlan& plan,
-                            MPI_Comm comm, int tag) {
+                            MPI_Comm comm, int tag, CommRecord& rec) {
     const std::size_t np = plan.partners.size();
     std::vector<std::vector<int>> recv(np);
     std::vector<MPI_Request> reqs;
@@ -87,12 +92,14 @@ inline void return_halo_max(FieldArray<int>& v, std::size_t n_owned, const HaloP
         reqs.emplace_back();
         MPI_Irecv(recv[k].data(), int(recv[k].size()), MPI_INT, plan.partners[k], tag, comm,
                   &reqs.back());
+        rec.received(plan.partners[k], Traffic::halo, recv[k].size() * sizeof(int));
     }
     for (std::size_t k = 0; k < np; ++k) {
         if (plan.recv_count[k] == 0) continue;
         reqs.emplace_back();
         MPI_Isend(v.data() + n_owned + plan.recv_offset[k], int(plan.recv_count[k]), MPI_INT,
                   plan.partners[k], tag, comm, &reqs.back());
+        rec.sent(plan.partners[k], Traffic::halo, plan.recv_count[k] * sizeof(int));
     }
     MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
     for (std::size_t k = 0; k < np; ++k)

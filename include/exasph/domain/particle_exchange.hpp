@@ -5,6 +5,7 @@
 
 #include "exasph/util/mpi.hpp"
 
+#include "exasph/domain/comm_record.hpp"
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/util/error.hpp"
 
@@ -67,7 +68,7 @@ void unpack_particles(ParticleSet<T>& ps, std::size_t offset, std::size_t count,
 // untouched, in their old order.
 template <class T>
 bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me, int nranks,
-                       std::uint64_t expected, MPI_Comm comm, int tag) {
+                       std::uint64_t expected, MPI_Comm comm, int tag, CommRecord& rec) {
     std::size_t leaving = 0;
 #pragma omp parallel for schedule(static) reduction(+ : leaving)
     for (std::size_t i = 0; i < dest.size(); ++i) leaving += dest[i] != me;
@@ -88,6 +89,7 @@ bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me,
         reqs.emplace_back();
         MPI_Isend(send_buf[r].data(), int(send_buf[r].size()), MPI_DOUBLE, r, tag, comm,
                   &reqs.back());
+        rec.sent(r, Traffic::migration, send_buf[r].size() * sizeof(double));
     }
     const bool changed = keep.size() != dest.size() || expected != keep.size();
     if (keep.size() != dest.size()) ps.permute(keep); // an identity permutation is a plain copy
@@ -100,6 +102,7 @@ bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me,
         MPI_Get_count(&st, MPI_DOUBLE, &ndoubles);
         buf.resize(std::size_t(ndoubles));
         MPI_Recv(buf.data(), ndoubles, MPI_DOUBLE, st.MPI_SOURCE, tag, comm, MPI_STATUS_IGNORE);
+        rec.received(st.MPI_SOURCE, Traffic::migration, std::uint64_t(ndoubles) * sizeof(double));
         const std::size_t count = std::size_t(ndoubles) / per;
         const std::size_t offset = ps.size();
         if (offset + count > expected)

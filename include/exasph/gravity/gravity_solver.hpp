@@ -11,6 +11,7 @@
 #include "exasph/domain/sfc_order.hpp"
 #include "exasph/gravity/gravity_group_kern.hpp"
 #include "exasph/gravity/gravity_tree.hpp"
+#include "exasph/gravity/leaf_summary_sums.hpp"
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/sfc/keys.hpp"
 #include "exasph/util/error.hpp"
@@ -62,8 +63,6 @@ class GravitySolver {
 
   private:
     static constexpr int kTag = 7201;
-    // Per leaf: sums carry mass, com[3], q[6], s[10], d2; maxima hi[3], -lo[3], hmax.
-    static constexpr int kSums = 21;
 
     struct Range {
         std::uint32_t begin = 0, end = 0;
@@ -91,41 +90,19 @@ class GravitySolver {
                                                  const std::vector<Range>& own, std::uint32_t f0,
                                                  std::uint32_t f1, Collectives& coll) {
         const std::size_t nl = asg.leaf_keys.size() - 1;
-        std::vector<SumMax> buf(nl * kSums);
+        std::vector<SumMax> buf(nl * kLeafSummarySums);
         for (std::uint32_t g = f0; g < f1; ++g) {
             const Range r = own[g - f0];
             if (r.end == r.begin) continue;
-            auto s = summarise_particles(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
-                                         ps.data(Field::m), ps.data(Field::h), r.begin, r.end);
-            SumMax* b = &buf[g * kSums];
-            b[0].sum = s.mp.mass;
-            for (int d = 0; d < 3; ++d) {
-                b[1 + d].sum = s.mp.com[d];
-                b[d].max = s.hi[d];
-                b[3 + d].max = -double(s.lo[d]);
-            }
-            for (int k = 0; k < 6; ++k) b[4 + k].sum = s.mp.q[k];
-            for (int k = 0; k < 10; ++k) b[10 + k].sum = s.mp.s[k];
-            b[20].sum = s.mp.d2;
-            b[6].max = s.hmax;
+            pack_leaf_summary(summarise_particles(ps.data(Field::x), ps.data(Field::y),
+                                                  ps.data(Field::z), ps.data(Field::m),
+                                                  ps.data(Field::h), r.begin, r.end),
+                              &buf[g * kLeafSummarySums]);
         }
         coll.allreduce_sum_max(buf);
         std::vector<LeafSummary<T>> out(nl);
-        for (std::size_t g = 0; g < nl; ++g) {
-            const SumMax* b = &buf[g * kSums];
-            if (!(b[0].sum > 0)) continue;
-            auto& s = out[g];
-            s.mp.mass = b[0].sum;
-            for (int d = 0; d < 3; ++d) {
-                s.mp.com[d] = b[1 + d].sum;
-                s.hi[d] = T(b[d].max);
-                s.lo[d] = T(-b[3 + d].max);
-            }
-            for (int k = 0; k < 6; ++k) s.mp.q[k] = b[4 + k].sum;
-            for (int k = 0; k < 10; ++k) s.mp.s[k] = b[10 + k].sum;
-            s.mp.d2 = b[20].sum;
-            s.hmax = T(b[6].max);
-        }
+        for (std::size_t g = 0; g < nl; ++g)
+            out[g] = unpack_leaf_summary<T>(&buf[g * kLeafSummarySums]);
         return out;
     }
 
@@ -165,6 +142,7 @@ class GravitySolver {
             reqs.emplace_back();
             MPI_Irecv(recv[s].data(), int(recv[s].size()), MPI_DOUBLE, s, kTag, coll.comm(),
                       &reqs.back());
+            coll.record().received(s, Traffic::gravity, recv[s].size() * sizeof(double));
         }
         std::vector<char> send_leaf(f1 - f0);
         const T* f[5] = {ps.data(Field::x), ps.data(Field::y), ps.data(Field::z), ps.data(Field::m),
@@ -185,6 +163,7 @@ class GravitySolver {
             reqs.emplace_back();
             MPI_Isend(send[r].data(), int(send[r].size()), MPI_DOUBLE, r, kTag, coll.comm(),
                       &reqs.back());
+            coll.record().sent(r, Traffic::gravity, send[r].size() * sizeof(double));
         }
         MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
         return recv;

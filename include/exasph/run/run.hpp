@@ -124,6 +124,7 @@ class RunDriver {
                 continue;
             }
             check_step();
+            updates_ += sim_->diagnostics().work.active;
             if (const std::string notice = sim_->take_sdc_notice(); root() && !notice.empty())
                 out_ << "sdc watchdog: " << notice << "\n";
             if (root()) {
@@ -151,9 +152,14 @@ class RunDriver {
         const double wall = wall_seconds() - wall0_ - output_wall_;
         double rss = double(peak_rss_bytes());
         MPI_Allreduce(MPI_IN_PLACE, &rss, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-        if (root())
-            print_summary(out_, *sim_, double(sim_->step_count() - step0_), wall, output_wall_,
-                          nranks_, rss);
+        const double steps = double(sim_->step_count() - step0_);
+        const CommRecord& rec = sim_->domain().comm_record();
+        const CommSummary comm = summarise_comm(rec, MPI_COMM_WORLD);
+        if (cfg_.comm_report)
+            write_comm_matrix(std::filesystem::path(cfg_.out_dir) / "comm_matrix.csv", rec, steps,
+                              MPI_COMM_WORLD);
+        if (root()) print_summary(out_, *sim_, steps, updates_, wall, output_wall_, nranks_, rss);
+        if (root() && nranks_ > 1) print_comm_summary(out_, comm, sim_->diagnostics(), steps);
     }
 
   private:
@@ -230,6 +236,7 @@ class RunDriver {
     std::string units_;
     std::vector<Field> fields_;
     double t_end_ = -1, mtbf_ = 0, wall0_ = 0, output_wall_ = 0;
+    double updates_ = 0; // particle updates since this process started stepping
     std::unique_ptr<CsvTable> csv_;
     std::unique_ptr<OutputSchedule> schedule_;
     std::int64_t step0_ = 0, last_checkpoint_ = -1;

@@ -11,6 +11,7 @@
 
 #include "exasph/build_info.hpp"
 #include "exasph/config/summary.hpp"
+#include "exasph/io/comm_matrix.hpp"
 #include "exasph/sim/simulation.hpp"
 
 // What rank 0 prints of a run: the header, one row per step and the summary.
@@ -77,13 +78,21 @@ void print_step(std::ostream& out, const Simulation<T, L>& sim, double wall_step
 
 // Steps, wall time, particle-steps per second (per core), peak memory per particle and the
 // seconds per step of each phase.
+// `updates`: the particles advanced, summed over the steps (with block time steps, the active
+// ones of each sub-step).
 template <class T, class L>
-void print_summary(std::ostream& out, const Simulation<T, L>& sim, double steps, double wall,
-                   double output_wall, int nranks, double rss_bytes) {
+void print_summary(std::ostream& out, const Simulation<T, L>& sim, double steps, double updates,
+                   double wall, double output_wall, int nranks, double rss_bytes) {
     const double n = double(sim.diagnostics().n);
-    const double rate = steps > 0 ? n * steps / wall : 0.0;
+    const double rate = steps > 0 ? updates / wall : 0.0;
     out << strprintf("done: %lld steps, t = %.6e, wall %.3f s (+ %.3f s output)\n",
                      (long long)steps, sim.time(), wall, output_wall);
+    if (const auto bound = sim.block_work_bound())
+        out << strprintf("block time steps: %.4e particle updates (%.1f per particle); with the "
+                         "limits at each block's start, global steps would take %.1f steps and "
+                         "every particle at its own limit %.1f updates (at most %.2fx fewer)\n",
+                         updates, updates / n, bound->global_steps, bound->own_limit_updates,
+                         bound->global_steps / bound->own_limit_updates);
     out << strprintf("particle-steps/s %.4e, per core %.4e (%d ranks x %d threads), "
                      "peak RSS %.1f B/particle (all ranks)\n",
                      rate, rate / (nranks * thread_count()), nranks, thread_count(), rss_bytes / n);
@@ -92,6 +101,19 @@ void print_summary(std::ostream& out, const Simulation<T, L>& sim, double steps,
         out << strprintf(" %s %.4f", std::string(kPhaseNames[i]).c_str(),
                          steps > 0 ? sim.total_phase_times()[i] / steps : 0.0);
     out << "\n";
+}
+
+// Several ranks: the point-to-point traffic per rank (CommRecord, over this run's steps) and the
+// last step's halo ratio.
+inline void print_comm_summary(std::ostream& out, const CommSummary& c, const Diagnostics& d,
+                               double steps) {
+    const double per = steps > 0 ? 1.0 / (steps * 1e6) : 0.0; // MB per step
+    out << strprintf("communication: halo peers per rank mean %.1f max %.0f; halo ratio mean "
+                     "%.3f max %.3f (last step); MB sent per step: halos per rank mean %.3g max "
+                     "%.3g, migration %.3g, gravity %.3g (all ranks)\n",
+                     c.halo_peers_mean, c.halo_peers_max, d.halo_ratio_mean, d.halo_ratio_max,
+                     c.halo_bytes_mean * per, c.halo_bytes_max * per, c.migration_bytes * per,
+                     c.gravity_bytes * per);
 }
 
 } // namespace exasph

@@ -15,6 +15,11 @@
 
 namespace exasph {
 
+// BlockClock::work_bound(): summed over the blocks so far.
+struct BlockWorkBound {
+    double global_steps = 0, own_limit_updates = 0; // per particle
+};
+
 // What BlockClock::choose needs to know of the run.
 struct BlockStepInputs {
     bool first;         // the run's first step (nothing to close; steps at most dt0)
@@ -59,6 +64,10 @@ class BlockClock {
         end_ = at.end;
         tick_dt_ = (end_ - t0_) / kTicks; // as start_block computed it
     }
+    // What the limits at the blocks' starts imply (each held for its block): the steps global
+    // time steps at the smallest limit would have taken, and the updates per particle had each
+    // particle stepped with all of its own limit. Their ratio bounds the work saved.
+    const BlockWorkBound& work_bound() const { return bound_; }
     // Where the clock stands (tick 0: a block's end).
     BlockPoint where() const { return tick_ == 0 ? BlockPoint{} : BlockPoint{tick_, t0_, end_}; }
     bool at_boundary() const { return tick_ == 0; }
@@ -129,6 +138,8 @@ class BlockClock {
         std::vector<SumMax> e(2);
         e[0].max = most;
         e[1].max = -least;
+        e[0].sum = inverse_limit_sum(ps, n);
+        e[1].sum = double(n);
         dom.collectives().allreduce_sum_max(e);
         // The smallest limit times the power of two that reaches the largest (at most 2^24):
         // the particle with the smallest limit steps with all of it (the shortest step, which
@@ -142,9 +153,21 @@ class BlockClock {
         end_ = t0_ + len;
         if (in.t_end > 0 && end_ >= in.t_end) end_ = in.t_end;
         tick_dt_ = (end_ - t0_) / kTicks;
+        bound_.global_steps += (end_ - t0_) / -e[1].max;
+        bound_.own_limit_updates += (end_ - t0_) * e[0].sum / e[1].sum;
+    }
+
+    // Sum over the owned particles of 1 / own step limit (the limits are in Field::dtc).
+    static double inverse_limit_sum(const ParticleSet<T>& ps, std::size_t n) {
+        const T* dt = ps.data(Field::dtc);
+        double s = 0;
+#pragma omp parallel for reduction(+ : s)
+        for (std::size_t i = 0; i < n; ++i) s += 1.0 / double(dt[i]);
+        return s;
     }
 
     bool limiter_;
+    BlockWorkBound bound_;
     std::int64_t tick_ = 0, next_ = 0;
     double t0_ = 0, end_ = 0, tick_dt_ = 0, last_tick_dt_ = 0;
     // Read by the kernels: FieldArrays, which the CUDA backend's device reads too.

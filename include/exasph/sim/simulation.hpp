@@ -141,6 +141,10 @@ class Simulation {
     const Box<T>& box() const { return box_; }
     double time() const { return time_; }
     std::int64_t step_count() const { return step_; }
+    // Block time steps: what the limits allowed (BlockClock::work_bound); none with global steps.
+    std::optional<BlockWorkBound> block_work_bound() const {
+        return blocks_ ? std::optional(blocks_->work_bound()) : std::nullopt;
+    }
     // Block time steps: whether every particle is synchronised (a block's end; rollback points).
     bool at_sync_point() const { return !blocks_ || blocks_->at_boundary(); }
     // Longest neighbour list of the last step on this rank (symmetric criterion).

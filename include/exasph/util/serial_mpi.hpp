@@ -125,6 +125,16 @@ inline int MPI_Allgatherv(const void* send, int count, MPI_Datatype type, void* 
     exasph::serial_mpi::copy(send, static_cast<char*>(recv) + displs[0] * type, count, type);
     return MPI_SUCCESS;
 }
+inline int MPI_Gather(const void* send, int count, MPI_Datatype type, void* recv, int, MPI_Datatype,
+                      int, MPI_Comm) {
+    exasph::serial_mpi::copy(send, recv, count, type);
+    return MPI_SUCCESS;
+}
+inline int MPI_Gatherv(const void* send, int count, MPI_Datatype type, void* recv, const int*,
+                       const int* displs, MPI_Datatype, int, MPI_Comm) {
+    exasph::serial_mpi::copy(send, static_cast<char*>(recv) + displs[0] * type, count, type);
+    return MPI_SUCCESS;
+}
 inline int MPI_Type_contiguous(int count, MPI_Datatype old, MPI_Datatype* out) {
     return *out = count * old, MPI_SUCCESS;
 }

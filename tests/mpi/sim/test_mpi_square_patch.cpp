@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "exasph/util/mpi.hpp"
 #include <gtest/gtest.h>
@@ -68,5 +69,52 @@ TEST(MpiSquarePatch, MatchesOneRankAndKeepsOwnershipBalanceAndCollectives) {
         EXPECT_LT(worst_u, 1e-10);
         EXPECT_NEAR(sim.diagnostics().etot, ref.etot, 1e-12 * std::abs(ref.etot));
         EXPECT_NEAR(sim.diagnostics().angular_momentum[2], ref.lz, 1e-12 * std::abs(ref.lz));
+    }
+}
+
+// Issue 23: the communication record. What rank i recorded as sent to j is what j recorded as
+// received from i, message for message and byte for byte, for every kind of traffic; halo
+// traffic goes only to the halo partners of the last sync and their number stays small.
+TEST(MpiSquarePatch, CommRecordAgreesBetweenSendersAndReceivers) {
+    int rank = 0, nranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+    omp_set_num_threads(1);
+    Config cfg = patch_config();
+    Simulation<double> sim(cfg, make_case(cfg));
+    for (int s = 0; s < 5; ++s) sim.step();
+    const CommRecord& rec = sim.domain().comm_record();
+    struct Entry {
+        std::uint64_t from, to, kind, messages, bytes, sent;
+    };
+    std::vector<Entry> mine;
+    for (int p = 0; p < nranks; ++p)
+        for (int t = 0; t < kNumTraffic; ++t) {
+            const MessageCount s = rec.sent_to(p, Traffic(t)), r = rec.received_from(p, Traffic(t));
+            if (s.messages)
+                mine.push_back({std::uint64_t(rank), std::uint64_t(p), std::uint64_t(t), s.messages,
+                                s.bytes, 1});
+            if (r.messages)
+                mine.push_back({std::uint64_t(p), std::uint64_t(rank), std::uint64_t(t), r.messages,
+                                r.bytes, 0});
+        }
+    EXPECT_EQ(rec.sent_to(rank, Traffic::halo).messages, 0u) << "a rank sent halos to itself";
+    auto all = testref::allgather(mine, MPI_COMM_WORLD);
+    std::map<std::tuple<std::uint64_t, std::uint64_t, std::uint64_t>, std::pair<Entry, Entry>> by;
+    for (const Entry& e : all)
+        (e.sent ? by[{e.from, e.to, e.kind}].first : by[{e.from, e.to, e.kind}].second) = e;
+    for (const auto& [key, pair] : by) {
+        EXPECT_EQ(pair.first.messages, pair.second.messages)
+            << std::get<0>(key) << " -> " << std::get<1>(key) << " kind " << std::get<2>(key);
+        EXPECT_EQ(pair.first.bytes, pair.second.bytes)
+            << std::get<0>(key) << " -> " << std::get<1>(key) << " kind " << std::get<2>(key);
+    }
+    const int peers = rec.peers(Traffic::halo);
+    int most = peers;
+    MPI_Allreduce(MPI_IN_PLACE, &most, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    if (rank == 0) std::printf("%d ranks: at most %d halo peers per rank\n", nranks, most);
+    EXPECT_LE(most, std::min(nranks - 1, 26));
+    if (nranks > 1) {
+        EXPECT_GT(peers, 0) << "rank " << rank << " exchanged no halos";
     }
 }

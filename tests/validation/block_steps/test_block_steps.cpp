@@ -21,6 +21,7 @@ struct SedovOutcome {
     double l1 = 0, rho_max = 0, energy_error = 0;
     double active_sum = 0, pairs_sum = 0; // over the steps: particle updates and pair terms
     std::int64_t steps = 0, partial_steps = 0, rollbacks = 0;
+    BlockWorkBound bound; // block steps: what the limits at the blocks' starts allowed
     bool pairs_follow_active = true; // every step: pair terms <= active particles x ngmax
 };
 
@@ -48,6 +49,12 @@ SedovOutcome run_sedov(int side, TimeStepping ts, bool limiter = true, double t_
     out.rho_max = d.rho_max;
     out.energy_error = std::abs(d.etot - e0) / std::abs(e0);
     out.rollbacks = sim.recoveries();
+    if (const auto b = sim.block_work_bound()) {
+        out.bound = *b;
+        std::printf("limits at the blocks' starts: %.1f global steps, %.1f updates per particle "
+                    "at their own limits (%.1f done)\n",
+                    b->global_steps, b->own_limit_updates, out.active_sum / double(d.n));
+    }
     std::printf("Sedov -n %d %s%s: %lld steps (%lld partial), %.3g particle updates, %.3g pair "
                 "terms, L1 %.4f, peak %.3f, energy error %.2e\n",
                 side, ts == TimeStepping::block ? "block" : "global",
@@ -74,6 +81,13 @@ TEST(BlockSteps, SedovMatchesGlobalStepsWithLessWork) {
     EXPECT_TRUE(block.pairs_follow_active);
     EXPECT_LT(block.active_sum, 0.5 * global.active_sum);
     EXPECT_LT(block.pairs_sum, 0.5 * global.pairs_sum);
+    // The run summary's bound (BlockClock::work_bound): the smallest limits give about the
+    // global run's steps, and no run beats every particle stepping with all of its own limit
+    // (power-of-two rungs round each limit down).
+    EXPECT_NEAR(block.bound.global_steps, double(global.steps), 0.25 * double(global.steps));
+    const double n = 30.0 * 30.0 * 30.0;
+    EXPECT_GT(block.active_sum / n, block.bound.own_limit_updates);
+    EXPECT_GT(block.bound.own_limit_updates, 0.3 * block.active_sum / n);
 }
 
 // Acceptance 2 at -n 40 to t = 0.1: without the limiter, cold particles on long steps meet the
