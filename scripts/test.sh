@@ -7,15 +7,17 @@
 #     client, fuzz replays) and the command line; the unit and validation tests are neither built nor run a second time
 #     (EXASPH_SINGLE_RANK_TESTS=OFF: a single-rank run is the same code and arithmetic in both
 #     builds, and test_mpi_cases runs every case under real MPI on 1 and 3 ranks);
-#  3. build-sanitize/, ASan + UBSan (issue 21): the unit tests, the fuzz corpora, the small MPI
+#  3. build-mpich/, the same code with MPICH instead of Open MPI (issue 23: supercomputers run
+#     MPICH-derived MPI), without HDF5 and CUDA: the MPI tests only;
+#  4. build-sanitize/, ASan + UBSan (issue 21): the unit tests, the fuzz corpora, the small MPI
 #     tests and short runs of every scheme, label sanitize.
-# EXASPH_SKIP_SERIAL=1 / EXASPH_SKIP_SANITIZE=1 skip builds 1 / 3 (with 1 skipped, build/ runs
-# everything).
+# EXASPH_SKIP_SERIAL=1 / EXASPH_SKIP_MPICH=1 / EXASPH_SKIP_SANITIZE=1 skip builds 1 / 3 / 4 (with
+# 1 skipped, build/ runs everything).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 single_rank=ON # build/ builds and runs the single-rank tests unless build-serial/ runs them
 [ $# -eq 0 ] && [ -z "${EXASPH_SKIP_SERIAL:-}" ] && single_rank=OFF
-EXASPH_TEST_PACKAGES="python3-paraview xvfb python3-pip" \
+EXASPH_TEST_PACKAGES="python3-paraview xvfb python3-pip libmpich-dev mpich" \
     EXASPH_CONFIGURE_ARGS="-DEXASPH_SINGLE_RANK_TESTS=$single_rank" bash "$root/scripts/setup.sh"
 full="${EXASPH_BUILD_DIR:-$root/build}"
 if [ $# -gt 0 ]; then
@@ -46,9 +48,23 @@ else
     echo "exasph test: the full build, every test"
     (cd "$full" && ctest --output-on-failure -j 2)
 fi
+if [ -z "${EXASPH_SKIP_MPICH:-}" ]; then
+    mpich="${EXASPH_MPICH_BUILD_DIR:-$root/build-mpich}"
+    echo "exasph test: 3. the build with MPICH (MPI tests only), in $mpich"
+    if [ ! -f "$mpich/CMakeCache.txt" ]; then
+        generator=()
+        command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
+        cmake -S "$root" -B "$mpich" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DEXASPH_HDF5=OFF \
+            -DEXASPH_CUDA=OFF -DEXASPH_BENCH=OFF -DEXASPH_SINGLE_RANK_TESTS=OFF \
+            -DMPI_CXX_COMPILER=/usr/bin/mpicxx.mpich -DMPIEXEC_EXECUTABLE=/usr/bin/mpiexec.mpich
+    fi
+    cmake --build "$mpich" -j "$(nproc)" --target test_mpi_domain test_mpi_square_patch \
+        test_mpi_cases test_mpi_gpu_host
+    (cd "$mpich" && ctest --output-on-failure -j 2 -L mpi)
+fi
 if [ -z "${EXASPH_SKIP_SANITIZE:-}" ]; then
     sanitize="${EXASPH_SANITIZE_BUILD_DIR:-$root/build-sanitize}"
-    echo "exasph test: 3. the sanitize build (ASan + UBSan), in $sanitize"
+    echo "exasph test: 4. the sanitize build (ASan + UBSan), in $sanitize"
     build_in "$sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DEXASPH_SANITIZE=ON \
         -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1"
     cd "$sanitize"
