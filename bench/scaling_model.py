@@ -15,7 +15,8 @@ most three-dimensional decomposition) and extrapolated to the node's particle co
 Per step and node the model adds:
   compute   n / rate                                   (rate: particle-steps/s of one node)
   halos     peers x exchanges x latency + H n b_halo / bandwidth
-  sync      the global tree's leaves: L = N / bucket; every rank reduces 16 B per leaf
+  sync      the global tree's leaves: L = N / bucket (bucket fixed, or grown to N / 2^20 as
+            exasph does since issue 23); every rank reduces 16 B per leaf
             (ring allreduce 2 x 16 L / bandwidth + 2 log2(P) latency) and walks them
             (L x t_leaf, measured)
   2 more collectives (time step, conservation sums): 2 x 2 log2(P) x latency
@@ -65,7 +66,8 @@ def step_time(p, a, c, b_halo, peers):
     lat, bw = a.latency, a.bandwidth
     compute = n / a.rate
     halos = (min(peers, p - 1) * a.exchanges * lat + h * n * b_halo / bw) if p > 1 else 0.0
-    leaves = total / a.bucket
+    bucket = max(a.bucket, total / 2 ** 20) if a.grow_bucket else a.bucket
+    leaves = total / bucket
     hops = 2 * math.log2(p) * lat if p > 1 else 0.0
     sync = leaves * a.t_leaf + ((2 * 16 * leaves / bw + hops) if p > 1 else 0.0)
     collectives = 2 * hops
@@ -77,7 +79,7 @@ def efficiency_table(nodes, a, c, b_halo, peers):
     t1, _ = step_time(1, a, c, b_halo, peers)
     print(f"\nmodel: {a.particles_per_node:.3g} particles per node, {a.rate:.3g} particle-steps/s "
           f"per node, latency {a.latency:.2g} s, bandwidth {a.bandwidth:.3g} B/s, "
-          f"global bucket {a.bucket:g}")
+          f"global bucket {a.bucket:g}{' grown to N / 2^20' if a.grow_bucket else ''}")
     print(" nodes  s/step  compute  halos   sync  collectives  halo ratio  efficiency")
     eff = []
     for p in nodes:
@@ -99,8 +101,6 @@ def main():
     ap.add_argument("--bandwidth", type=float, default=10e9, help="B/s per node (Aries)")
     ap.add_argument("--exchanges", type=int, default=3, help="halo exchanges per step")
     ap.add_argument("--bucket", type=float, default=128, help="--global-bucket")
-    ap.add_argument("--leaves-per-rank", type=float, default=1024,
-                    help="the second curve: --global-bucket = particles per node / this")
     ap.add_argument("--t-leaf", type=float, default=0.5e-6,
                     help="s per global leaf and step on one rank (sync's count, sort, assignment)")
     a = ap.parse_args()
@@ -118,11 +118,9 @@ def main():
           f"{b_halo:.0f} B per halo particle and step; peers at scale 26")
     fig, ax = plt.subplots(figsize=(6.5, 4))
     nodes = [1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048]
-    scaled = a.particles_per_node / a.leaves_per_rank
-    for bucket, label in ((a.bucket, f"--global-bucket {a.bucket:g}"),
-                          (scaled, f"--global-bucket {scaled:g} ({a.leaves_per_rank:g} leaves "
-                                   "per rank)")):
-        a.bucket = bucket
+    for grow, label in ((False, f"bucket fixed at {a.bucket:g} (before)"),
+                        (True, f"bucket max({a.bucket:g}, N / 2^20) (exasph now)")):
+        a.grow_bucket = grow
         eff = efficiency_table(nodes, a, c, b_halo, peers)
         ax.semilogx(nodes, [100 * e for e in eff], "o-", base=2, label=f"model, {label}")
     ax.semilogx([2048], [67], "s", color="tab:red", label="SPH-EXA paper, measured (67 %)")

@@ -186,7 +186,8 @@ inline const std::array kParameters{
           "sequence", "", OnRestart::kept, &Config::stir_seed, in_range(0, 2147483647)},
     // Decomposition
     Param{"--global-bucket", "global_bucket", "Global tree leaf size: the unit of MPI load "
-          "balance (particles)", "", OnRestart::kept, &Config::global_bucket,
+          "balance (particles); grown to N / 2^20 for N above 2^20 times it, so that the global "
+          "tree keeps about 2^20 leaves", "", OnRestart::kept, &Config::global_bucket,
           in_range(1, 1 << 20)},
     Param{"--leaf-size", "leaf_size", "Local octree leaf size (particles)", "", OnRestart::kept,
           &Config::leaf_size, in_range(1, 4096)},

@@ -42,7 +42,7 @@ class Domain {
             auto keys = compute_keys(ps, box);
             auto leaf = leaves_of(keys);
             auto counts = global_counts(ps, leaf);
-            if (!tree_.refine(counts, global_bucket_)) {
+            if (!tree_.refine(counts, bucket_for(counts))) {
                 assign_leaves(counts, coll_.size()); // more ranks than leaves fail here, early
                 return;
             }
@@ -101,7 +101,7 @@ class Domain {
                                   ps.data(Field::h));
         std::vector<std::uint64_t>().swap(keys);
         discover_halos(ps, box);
-        tree_.refine(counts_, global_bucket_); // for the next step; counts belong to this tree
+        tree_.refine(counts_, bucket_for(counts_)); // for the next step; counts belong to this tree
     }
 
     // Sends the fields carrying `roles` from owners to the halo copies.
@@ -185,6 +185,12 @@ class Domain {
     static constexpr int kTagHalo = 7103;
     static constexpr int kTagHaloReturn = 7104;
     SortScratch sort_scratch_; // kept between syncs only with block time steps
+
+    std::uint64_t bucket_for(const std::vector<std::uint64_t>& counts) const {
+        std::uint64_t total = 0;
+        for (std::uint64_t c : counts) total += c;
+        return effective_global_bucket(global_bucket_, total);
+    }
 
     std::vector<std::uint64_t> compute_keys(const ParticleSet<T>& ps, const Box<T>& box) const {
         std::vector<std::uint64_t> keys(n_owned_);

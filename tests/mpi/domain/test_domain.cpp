@@ -216,3 +216,15 @@ TEST(Domain, TooManyRanksIsAnErrorOnEveryRank) {
         EXPECT_NE(std::string(e.what()).find("no particles"), std::string::npos);
     }
 }
+
+// Issue 23: the global tree keeps about 2^20 leaves at any size (every rank walks all of them
+// every step), growing the bucket only with the total particle count, never with the rank count.
+TEST(Domain, GlobalBucketGrowsOnlyWithTheTotalParticleCount) {
+    EXPECT_EQ(effective_global_bucket(128, 1000000), 128u);
+    EXPECT_EQ(effective_global_bucket(128, std::uint64_t(1) << 27), 128u); // 134M: unchanged
+    EXPECT_EQ(effective_global_bucket(128, std::uint64_t(1) << 30), 1024u);
+    EXPECT_EQ(effective_global_bucket(4096, std::uint64_t(1) << 30), 4096u);
+    const std::uint64_t paper = 2048ull * 32000000ull; // 65.5e9 particles on 2,048 nodes
+    EXPECT_EQ(effective_global_bucket(128, paper), paper >> 20);
+    EXPECT_LE(double(paper) / double(effective_global_bucket(128, paper)), double(1 << 20) + 1);
+}
