@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <tuple>
+#include <utility>
 
 #include "exasph/util/mpi.hpp"
 #include <gtest/gtest.h>
@@ -30,14 +31,20 @@ Config patch_config() {
     return cfg;
 }
 
-} // namespace
-
-TEST(MpiSquarePatch, MatchesOneRankAndKeepsOwnershipBalanceAndCollectives) {
-    OneRankReference ref = one_rank_reference(patch_config(), kSteps, 2);
+// This rank and the rank count; the distributed runs use one OpenMP thread per rank.
+std::pair<int, int> one_thread_per_rank() {
     int rank = 0, nranks = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
     omp_set_num_threads(1);
+    return {rank, nranks};
+}
+
+} // namespace
+
+TEST(MpiSquarePatch, MatchesOneRankAndKeepsOwnershipBalanceAndCollectives) {
+    OneRankReference ref = one_rank_reference(patch_config(), kSteps, 2);
+    const auto [rank, nranks] = one_thread_per_rank();
     Config cfg = patch_config();
     Simulation<double> sim(cfg, make_case(cfg));
     const std::uint64_t n = std::uint64_t(cfg.side) * cfg.side * cfg.side;
@@ -76,10 +83,7 @@ TEST(MpiSquarePatch, MatchesOneRankAndKeepsOwnershipBalanceAndCollectives) {
 // received from i, message for message and byte for byte, for every kind of traffic; halo
 // traffic goes only to the halo partners of the last sync and their number stays small.
 TEST(MpiSquarePatch, CommRecordAgreesBetweenSendersAndReceivers) {
-    int rank = 0, nranks = 1;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
-    omp_set_num_threads(1);
+    const auto [rank, nranks] = one_thread_per_rank();
     Config cfg = patch_config();
     Simulation<double> sim(cfg, make_case(cfg));
     for (int s = 0; s < 5; ++s) sim.step();

@@ -21,7 +21,7 @@ struct SedovOutcome {
     double l1 = 0, rho_max = 0, energy_error = 0;
     double active_sum = 0, pairs_sum = 0; // over the steps: particle updates and pair terms
     std::int64_t steps = 0, partial_steps = 0, rollbacks = 0;
-    BlockWorkBound bound; // block steps: what the limits at the blocks' starts allowed
+    BlockWorkBound bound;            // block steps: what the limits at the blocks' starts allowed
     bool pairs_follow_active = true; // every step: pair terms <= active particles x ngmax
 };
 
