@@ -9,7 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "exasph/config/parameters.hpp"
+#include "exasph/config/parameter_text.hpp"
 #include "exasph/config/scheme.hpp"
 #include "exasph/util/error.hpp"
 

@@ -12,7 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <toml++/toml.h>
 
-#include "exasph/config/parameters.hpp"
+#include "exasph/config/parameter_text.hpp"
 #include "exasph/config/run_file.hpp"
 #include "exasph/util/error.hpp"
 

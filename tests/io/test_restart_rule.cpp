@@ -54,6 +54,7 @@ std::string changed_value(const Param& p) {
     if (key == "scheme") return "ve";
     if (key == "backend") return "cpu";
     if (key == "timesteps") return "block";
+    if (key == "balance") return "cost";
     if (key == "steps") return "5";
     if (key == "restart") return "";
     return std::visit(

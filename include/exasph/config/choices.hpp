@@ -55,6 +55,12 @@ struct Choices<TimeStepping> {
         {{"global", TimeStepping::global}, {"block", TimeStepping::block}}};
 };
 
+template <>
+struct Choices<Balance> {
+    static constexpr std::array<std::pair<std::string_view, Balance>, 2> values{
+        {{"count", Balance::count}, {"cost", Balance::cost}}};
+};
+
 template <class E>
 std::string_view choice_name(E e) {
     for (const auto& [name, value] : Choices<E>::values)

@@ -13,6 +13,7 @@ enum class RollbackStore { disk, memory };         // --sdc-rollback-store
 enum class Scheme { std_sph, ve, wc, pe, sh };     // --scheme (config/scheme.hpp)
 enum class BackendChoice { cpu, cuda, automatic }; // --backend (run/backend.hpp)
 enum class TimeStepping { global, block };         // --timesteps (sim/block_clock.hpp)
+enum class Balance { count, cost };                // --balance (domain/cost_balance.hpp)
 
 // Everything a run is configured with. Each member that the command line sets is declared
 // once more, with its flag, help, unit and restart rule, in the parameter table
@@ -48,10 +49,11 @@ struct Config {
     double theta = 0.5;     // Barnes-Hut opening angle (SPEC 8)
     double accel_eps = 0.2; // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)
     TimeStepping timesteps = TimeStepping::global; // one global dt, or power-of-two rungs
-    bool no_timestep_limiter = false;       // testing: block steps without the neighbour limiter
-    int gravity_leaf_size = 16;             // gravity-tree leaf size: one interaction list per leaf
-    double stir_mach = -1.0;                // --stir-mach; < 0: the case's (0: no stirring)
-    int stir_seed = 1;                      // --stir-seed: the stirring's random sequence
+    bool no_timestep_limiter = false; // testing: block steps without the neighbour limiter
+    bool no_halo_overlap = false; // benchmarks: each halo exchange waited for before the next pass
+    int gravity_leaf_size = 16;   // gravity-tree leaf size: one interaction list per leaf
+    double stir_mach = -1.0;      // --stir-mach; < 0: the case's (0: no stirring)
+    int stir_seed = 1;            // --stir-seed: the stirring's random sequence
     SdcPolicy on_sdc = SdcPolicy::rollback; // silent data corruption
     int sdc_rollback_every = 10;            // steps between rollback points
     // Disk by default: the copy in memory would add ~112 B to the ~300 B a particle needs.
@@ -61,7 +63,8 @@ struct Config {
     int threads = 0;                                  // 0: OpenMP default
     BackendChoice backend = BackendChoice::automatic; // where the SPH passes run
     int leaf_size = 64;                               // local octree leaf size
-    int global_bucket = 128; // global (top) tree leaf size: the unit of MPI load balance
+    int global_bucket = 128;          // global (top) tree leaf size: the unit of MPI load balance
+    Balance balance = Balance::count; // cut the SFC by particle counts or by expected work
     CurveKind curve = CurveKind::hilbert;
     bool lattice = false; // glass cases: regular lattice instead of the (cached) glass
     std::vector<std::string> case_params; // --param KEY=VALUE: case parameters

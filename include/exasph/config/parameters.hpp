@@ -53,7 +53,7 @@ using ParamMember =
     std::variant<double Config::*, int Config::*, std::int64_t Config::*, bool Config::*,
                  std::string Config::*, std::vector<std::string> Config::*, CurveKind Config::*,
                  Scheme Config::*, SdcPolicy Config::*, RollbackStore Config::*,
-                 BackendChoice Config::*, TimeStepping Config::*, CustomValue>;
+                 BackendChoice Config::*, TimeStepping Config::*, Balance Config::*, CustomValue>;
 
 // One run parameter, declared once: the command line, --help, the restart rule, the checkpoint
 // attributes and the run header are all generated from kParameters.
@@ -189,6 +189,13 @@ inline const std::array kParameters{
           "balance (particles); grown to N / 2^20 for N above 2^20 times it, so that the global "
           "tree keeps about 2^20 leaves", "", OnRestart::kept, &Config::global_bucket,
           in_range(1, 1 << 20)},
+    Param{"--balance", "balance", "MPI load balance: equal particle counts per rank, or equal "
+          "expected work (cost: with block time steps an inactive particle costs 0.15 of an active "
+          "one, at most 1.5 x the mean count per rank; global steps: as count)", "", OnRestart::given, &Config::balance},
+    Param{"--no-halo-overlap", "no_halo_overlap", "Benchmarks: wait for each halo exchange of "
+          "the SPH passes before the next pass, instead of computing the particles that do not "
+          "need it meanwhile (to measure what the overlap hides)", "", OnRestart::given,
+          &Config::no_halo_overlap},
     Param{"--leaf-size", "leaf_size", "Local octree leaf size (particles)", "", OnRestart::kept,
           &Config::leaf_size, in_range(1, 4096)},
     Param{"--curve", "curve", "Space-filling curve: hilbert or morton", "", OnRestart::kept, &Config::curve},
@@ -257,41 +264,6 @@ inline const Param* find_parameter(std::string_view key) {
     for (const auto& p : kParameters)
         if (key == p.key) return &p;
     return nullptr;
-}
-
-// The longest of a parameter's flags ("--steps" of "-s,--steps"): the name messages use.
-inline std::string long_flag(const Param& p) {
-    std::string_view f(p.flags);
-    const auto comma = f.rfind(',');
-    return std::string(comma == std::string_view::npos ? f : f.substr(comma + 1));
-}
-
-// A parameter's value as text (the run header): numbers as %g, flags as on/off, lists
-// comma-separated, enums by name.
-inline std::string format_value(const Param& p, const Config& cfg) {
-    return std::visit(
-        [&](const auto& m) -> std::string {
-            using M = std::decay_t<decltype(m)>;
-            if constexpr (std::is_same_v<M, CustomValue>) {
-                return m.format(cfg);
-            } else {
-                const auto& v = cfg.*m;
-                using V = std::decay_t<decltype(v)>;
-                if constexpr (std::is_same_v<V, bool>)
-                    return v ? "on" : "off";
-                else if constexpr (std::is_same_v<V, std::string>)
-                    return v;
-                else if constexpr (std::is_same_v<V, std::vector<std::string>>) {
-                    std::string s;
-                    for (const auto& e : v) s += (s.empty() ? "" : ",") + e;
-                    return s;
-                } else if constexpr (std::is_enum_v<V>)
-                    return std::string(choice_name(v));
-                else
-                    return format_number(double(v));
-            }
-        },
-        p.member);
 }
 
 } // namespace exasph

@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "exasph/config/parameters.hpp"
+#include "exasph/config/parameter_text.hpp"
 
 namespace exasph {
 

@@ -55,11 +55,15 @@ class Collectives {
 
     void allreduce_sum_max(std::vector<SumMax>& v) {
         ++count_;
+        const double t0 = wall_seconds();
         MPI_Allreduce(MPI_IN_PLACE, v.data(), int(v.size()), type_, op_, comm_);
+        record_.waited(wall_seconds() - t0);
     }
     double allreduce_min(double x) {
         ++count_;
+        const double t0 = wall_seconds();
         MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MIN, comm_);
+        record_.waited(wall_seconds() - t0);
         return x;
     }
 

@@ -4,6 +4,9 @@
 #include <string_view>
 #include <vector>
 
+#include "exasph/util/mpi.hpp"
+#include "exasph/util/timer.hpp"
+
 namespace exasph {
 
 // The kinds of point-to-point traffic: halo exchanges (with their counts and, with block time
@@ -35,6 +38,24 @@ class CommRecord {
     }
     int nranks() const { return int(sent_.size()); }
 
+    // Seconds this rank has spent blocked in MPI (waits, probes, collectives) since the run
+    // started here: a step's wall time less this is its compute time (the per-rank imbalance of
+    // the diagnostics, issue 23).
+    void waited(double seconds) { wait_seconds_ += seconds; }
+    double wait_seconds() const { return wait_seconds_; }
+    // The halo exchanges of the SPH passes (Domain::exchange_halos, post_halos, finish_halos):
+    // seconds spent in them (packing, posting, waiting, unpacking) and seconds a posted exchange
+    // was in flight while the rank computed (issue 23's overlap).
+    void halo_time(double exposed, double behind_compute) {
+        halo_exposed_ += exposed;
+        halo_behind_compute_ += behind_compute;
+    }
+    double halo_exposed_seconds() const { return halo_exposed_; }
+    double halo_behind_compute_seconds() const { return halo_behind_compute_; }
+    // The same since the step began (the domain's count_particles() marks it).
+    void start_step() { step_start_ = wait_seconds_; }
+    double waited_in_step() const { return wait_seconds_ - step_start_; }
+
     // The ranks this one exchanged traffic of kind t with (either direction).
     int peers(Traffic t) const {
         int n = 0;
@@ -52,6 +73,15 @@ class CommRecord {
     }
 
     std::vector<Row> sent_, received_;
+    double wait_seconds_ = 0, step_start_ = 0;
+    double halo_exposed_ = 0, halo_behind_compute_ = 0;
 };
+
+// MPI_Waitall, its time charged to the record's waiting.
+inline void wait_all(std::vector<MPI_Request>& reqs, CommRecord& rec) {
+    const double t0 = wall_seconds();
+    MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
+    rec.waited(wall_seconds() - t0);
+}
 
 } // namespace exasph

@@ -7,7 +7,9 @@
 
 #include "exasph/util/mpi.hpp"
 
+#include "exasph/domain/box_extent.hpp"
 #include "exasph/domain/collectives.hpp"
+#include "exasph/domain/cost_balance.hpp"
 #include "exasph/domain/global_tree.hpp"
 #include "exasph/domain/halo_discovery.hpp"
 #include "exasph/domain/halo_exchange.hpp"
@@ -68,18 +70,23 @@ class Domain {
     // state found before the step); returns whether any rank raised it, in which case the
     // caller must not call distribute() and nothing has changed. Otherwise the particles are
     // still where they were (a state that may be saved) until distribute() moves them.
-    bool count_particles(ParticleSet<T>& ps, const Box<T>& box, bool local_vote = false) {
+    // With `cost` (one per owned particle, --balance cost) the collective also sums it per leaf
+    // and distribute() cuts the curve by cost (domain/cost_balance.hpp).
+    bool count_particles(ParticleSet<T>& ps, const Box<T>& box, bool local_vote = false,
+                         const float* cost = nullptr) {
         ps.resize(n_owned_); // drop last step's halos
+        coll_.record().start_step();
         keys_ = compute_keys(ps, box);
         leaf_ = leaves_of(keys_);
         bool any_vote = false;
-        counts_ = global_counts(ps, leaf_, local_vote, &any_vote);
+        counts_ = global_counts(ps, leaf_, local_vote, &any_vote, cost);
         return any_vote;
     }
 
     // The second half: migration, sort, local tree, halos.
     void distribute(ParticleSet<T>& ps, const Box<T>& box) {
-        asg_ = assign_leaves(counts_, coll_.size());
+        asg_ = costs_.empty() ? assign_leaves(counts_, coll_.size())
+                              : assign_leaves_by_cost(counts_, costs_, coll_.size());
         asg_.leaf_keys = tree_.keys();
         asg_.leaf_count = counts_;
         std::vector<int> dest(ps.size());
@@ -106,8 +113,34 @@ class Domain {
 
     // Sends the fields carrying `roles` from owners to the halo copies.
     void exchange_halos(ParticleSet<T>& ps, std::uint8_t roles) {
-        exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{ps.fields(roles), false},
-                             coll_.comm(), kTagHalo, coll_.record());
+        PostedHalos x = post_halos(ps, roles);
+        finish_halos(ps, x);
+    }
+    // The same in two halves, for work in between (issue 23's overlap): post_halos() packs and
+    // posts, finish_halos() waits and unpacks. The halos' fields are valid only after finishing.
+    PostedHalos post_halos(const ParticleSet<T>& ps, std::uint8_t roles) {
+        const double t0 = wall_seconds();
+        PostedHalos x;
+        if (!spare_.empty()) x = std::move(spare_.back()), spare_.pop_back();
+        post_halo_fields(ps, plan_, FieldSelection{ps.fields(roles), false}, coll_.comm(), kTagHalo,
+                         coll_.record(), x);
+        coll_.record().halo_time(x.posted_at - t0, 0.0);
+        return x;
+    }
+    void progress_halos(PostedHalos& x) {
+        const double t0 = wall_seconds();
+        progress_halo_fields(x);
+        coll_.record().halo_time(wall_seconds() - t0, 0.0);
+    }
+    void finish_halos(ParticleSet<T>& ps, PostedHalos& x) {
+        const double t0 = wall_seconds();
+        finish_halo_fields(ps, n_owned_, plan_, x, coll_.record());
+        coll_.record().halo_time(wall_seconds() - t0, t0 - x.posted_at);
+        spare_.push_back(std::move(x)); // its buffers serve the next exchange
+    }
+    // Per owned particle: whether some rank receives it as a halo (from the last sync).
+    const std::uint8_t* sent_flags() const {
+        return sent_.data();
     }
 
     // Block time steps: each halo's value of v (owned, then halos) goes back to its owner, which
@@ -131,6 +164,10 @@ class Domain {
     const Assignment& assignment() const {
         return asg_;
     }
+    // --balance cost: the last sync's summed cost per leaf of assignment() (else empty).
+    const std::vector<double>& leaf_costs() const {
+        return costs_;
+    }
     const GlobalTree& global_tree() const {
         return tree_;
     }
@@ -151,32 +188,6 @@ class Domain {
     }
     CurveKind curve() const {
         return curve_;
-    }
-
-    // Local min/max of the owned positions as six SumMax elements (max of hi, max of -lo).
-    static void local_extent(const ParticleSet<T>& ps, std::size_t n, SumMax* out) {
-        for (int d = 0; d < 3; ++d) {
-            const T* c = ps.data(component(Field::x, d));
-            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-#pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi)
-            for (std::size_t i = 0; i < n; ++i) {
-                lo = std::min(lo, double(c[i]));
-                hi = std::max(hi, double(c[i]));
-            }
-            out[d] = {0.0, hi};
-            out[3 + d] = {0.0, -lo};
-        }
-    }
-
-    // Fits the open axes of the box to a reduced extent (periodic axes keep their period).
-    static void apply_extent(Box<T>& box, const SumMax* ext) {
-        for (int d = 0; d < 3; ++d) {
-            if (box.periodic[d]) continue;
-            double hi = ext[d].max, lo = -ext[3 + d].max;
-            double pad = 1e-6 * std::max(hi - lo, 1e-30) + 1e-300;
-            box.lo[d] = T(lo - pad);
-            box.hi[d] = T(hi + pad);
-        }
     }
 
   private:
@@ -211,20 +222,25 @@ class Domain {
         return leaf;
     }
 
-    // The one hot-path collective of the sync: particle count (sum) and maximum h (max) per leaf.
+    // The one hot-path collective of the sync: particle count (sum) and maximum h (max) per leaf,
+    // the vote, and with `cost` each leaf's summed cost (kept in costs_; else costs_ is empty).
     std::vector<std::uint64_t> global_counts(const ParticleSet<T>& ps,
                                              const std::vector<std::uint32_t>& leaf,
-                                             bool local_vote = false, bool* any_vote = nullptr) {
+                                             bool local_vote = false, bool* any_vote = nullptr,
+                                             const float* cost = nullptr) {
         const std::size_t nl = tree_.num_leaves();
-        std::vector<SumMax> stat(nl + 1);
+        std::vector<SumMax> stat(cost ? 2 * nl + 1 : nl + 1);
         stat[nl].max = local_vote ? 1.0 : 0.0;
         const T* h = ps.data(Field::h);
         for (std::size_t i = 0; i < leaf.size(); ++i) {
             stat[leaf[i]].sum += 1.0;
             stat[leaf[i]].max = std::max(stat[leaf[i]].max, double(h[i]));
+            if (cost) stat[nl + 1 + leaf[i]].sum += double(cost[i]);
         }
         coll_.allreduce_sum_max(stat);
         if (any_vote) *any_vote = stat[nl].max > 0;
+        costs_.resize(cost ? nl : 0);
+        for (std::size_t l = 0; l < costs_.size(); ++l) costs_[l] = stat[nl + 1 + l].sum;
         std::vector<std::uint64_t> counts(nl);
         leaf_hmax_.resize(nl);
         for (std::size_t l = 0; l < nl; ++l) {
@@ -243,6 +259,9 @@ class Domain {
         plan_halo_sends(plan_, index_, local_tree_, ps.data(Field::x), ps.data(Field::y),
                         ps.data(Field::z), ps.data(Field::h), coll_.rank(), box);
         exchange_halo_counts(plan_, coll_.comm(), kTagHaloCount, coll_.record());
+        sent_.assign(n_owned_, 0);
+        for (const auto& list : plan_.send)
+            for (std::uint32_t i : list) sent_[i] = 1;
         ps.resize(n_owned_ + plan_.n_halo);
         exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{ps.fields(kHaloSync), true},
                              coll_.comm(), kTagHalo, coll_.record());
@@ -266,12 +285,15 @@ class Domain {
     std::vector<T> leaf_hmax_;
     LeafIndex<T> index_;
     HaloPlan plan_;
+    std::vector<PostedHalos> spare_; // buffers of finished halo exchanges
+    std::vector<std::uint8_t> sent_; // per owned particle: in some partner's send list
     Octree<T> local_tree_, halo_tree_;
     std::size_t n_owned_ = 0;
     // Between count_particles() and distribute(): keys, global leaf and leaf counts.
     std::vector<std::uint64_t> keys_;
     std::vector<std::uint32_t> leaf_;
     std::vector<std::uint64_t> counts_;
+    std::vector<double> costs_; // per leaf, with --balance cost
 };
 
 } // namespace exasph

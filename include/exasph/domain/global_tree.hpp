@@ -133,7 +133,8 @@ class GlobalTree {
 
 // Contiguous leaf ranges per rank with balanced particle counts: rank r owns leaves
 // [first_leaf[r], first_leaf[r+1]). Each boundary is the leaf boundary nearest to r N / P, so
-// the imbalance is at most the largest leaf count.
+// the imbalance is at most the largest leaf count. With `weight` (one integer per leaf), the
+// boundaries balance the weights instead (domain/cost_balance.hpp).
 struct Assignment {
     std::vector<std::uint32_t> first_leaf; // size P + 1
     std::vector<std::uint64_t> count;      // particles per rank
@@ -150,10 +151,12 @@ struct Assignment {
     }
 };
 
-inline Assignment assign_leaves(const std::vector<std::uint64_t>& counts, int nranks) {
+inline Assignment assign_leaves(const std::vector<std::uint64_t>& counts, int nranks,
+                                const std::vector<std::uint64_t>& weight = {}) {
     const std::size_t nleaves = counts.size();
+    const std::vector<std::uint64_t>& w = weight.empty() ? counts : weight;
     std::vector<std::uint64_t> cum(nleaves + 1, 0);
-    for (std::size_t i = 0; i < nleaves; ++i) cum[i + 1] = cum[i] + counts[i];
+    for (std::size_t i = 0; i < nleaves; ++i) cum[i + 1] = cum[i] + w[i];
     const std::uint64_t total = cum.back();
     Assignment a;
     a.first_leaf.assign(nranks + 1, 0);
@@ -165,6 +168,7 @@ inline Assignment assign_leaves(const std::vector<std::uint64_t>& counts, int nr
         if (b > 0 && target - double(cum[b - 1]) < double(cum[b]) - target) --b;
         a.first_leaf[r] = std::uint32_t(std::max<std::size_t>(b, a.first_leaf[r - 1]));
     }
+    for (std::size_t i = 0; i < nleaves; ++i) cum[i + 1] = cum[i] + counts[i];
     a.count.resize(nranks);
     a.owner.resize(nleaves);
     for (int r = 0; r < nranks; ++r) {
@@ -172,7 +176,7 @@ inline Assignment assign_leaves(const std::vector<std::uint64_t>& counts, int nr
         for (std::uint32_t l = a.first_leaf[r]; l < a.first_leaf[r + 1]; ++l) a.owner[l] = r;
         if (a.count[r] == 0)
             throw input_error("domain decomposition: rank " + std::to_string(r) +
-                                  " would own no particles (" + std::to_string(total) +
+                                  " would own no particles (" + std::to_string(cum.back()) +
                                   " particles, " + std::to_string(nleaves) + " global leaves, " +
                                   std::to_string(nranks) +
                                   " ranks): use fewer ranks or a smaller --global-bucket",

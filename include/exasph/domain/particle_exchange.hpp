@@ -97,7 +97,9 @@ bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me,
     std::vector<double> buf;
     while (ps.size() < expected) {
         MPI_Status st;
+        const double t0 = wall_seconds();
         MPI_Probe(MPI_ANY_SOURCE, tag, comm, &st);
+        rec.waited(wall_seconds() - t0);
         int ndoubles = 0;
         MPI_Get_count(&st, MPI_DOUBLE, &ndoubles);
         buf.resize(std::size_t(ndoubles));
@@ -110,7 +112,7 @@ bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me,
         ps.resize(offset + count);
         unpack_particles(ps, offset, count, sel, buf.data());
     }
-    MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
+    wait_all(reqs, rec);
     return changed;
 }
 

@@ -165,7 +165,7 @@ class GravitySolver {
                       &reqs.back());
             coll.record().sent(r, Traffic::gravity, send[r].size() * sizeof(double));
         }
-        MPI_Waitall(int(reqs.size()), reqs.data(), MPI_STATUSES_IGNORE);
+        wait_all(reqs, coll.record());
         return recv;
     }
 

@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -19,18 +20,29 @@ struct CommSummary {
     double halo_peers_mean = 0, halo_peers_max = 0;
     double halo_bytes_mean = 0, halo_bytes_max = 0; // sent per rank, summed over the steps
     double migration_bytes = 0, gravity_bytes = 0;  // sent, all ranks
+    // The SPH passes' halo exchanges, seconds per rank (mean) over the run's steps after the
+    // first: spent in them, and in flight while the rank computed (CommRecord::halo_time).
+    double halo_exposed = 0, halo_behind_compute = 0;
 };
 
-inline CommSummary summarise_comm(const CommRecord& rec, MPI_Comm comm) {
+// `before`: the halo seconds (exposed, behind computation) to leave out (the first step's).
+inline CommSummary summarise_comm(const CommRecord& rec, MPI_Comm comm,
+                                  std::array<double, 2> before = {0, 0}) {
     double sent[kNumTraffic] = {};
     for (int r = 0; r < rec.nranks(); ++r)
         for (int t = 0; t < kNumTraffic; ++t) sent[t] += double(rec.sent_to(r, Traffic(t)).bytes);
-    double sums[4] = {double(rec.peers(Traffic::halo)), sent[0], sent[1], sent[2]};
+    double sums[6] = {double(rec.peers(Traffic::halo)),
+                      sent[0],
+                      sent[1],
+                      sent[2],
+                      rec.halo_exposed_seconds() - before[0],
+                      rec.halo_behind_compute_seconds() - before[1]};
     double maxima[2] = {sums[0], sums[1]};
-    MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, comm);
+    MPI_Allreduce(MPI_IN_PLACE, sums, 6, MPI_DOUBLE, MPI_SUM, comm);
     MPI_Allreduce(MPI_IN_PLACE, maxima, 2, MPI_DOUBLE, MPI_MAX, comm);
     const double n = rec.nranks();
-    return {sums[0] / n, maxima[0], sums[1] / n, maxima[1], sums[2], sums[3]};
+    return {sums[0] / n, maxima[0], sums[1] / n, maxima[1],
+            sums[2],     sums[3],   sums[4] / n, sums[5] / n};
 }
 
 // --comm-report: OUT/comm_matrix.csv, one row per (rank, peer, kind of traffic) with any traffic:

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "exasph/build_info.hpp"
-#include "exasph/config/parameters.hpp"
+#include "exasph/config/parameter_text.hpp"
 #include "exasph/io/h5_file.hpp"
 #include "exasph/sph/eos.hpp"
 #include "exasph/util/box.hpp"

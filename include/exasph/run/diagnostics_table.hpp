@@ -22,6 +22,8 @@ inline std::vector<CsvColumn> diagnostics_columns(bool rungs) {
     // pair terms of one neighbour pass over them, and the shortest rung in use (block steps)
     for (const char* name : {"active", "pairs", "rung_max"})
         c.push_back({name, CsvFormat::integer});
+    // the slowest rank's compute seconds (wall time outside MPI waits) over the mean rank's
+    c.push_back({"compute_imbalance"});
     for (int k = 0; rungs && k <= kMaxRung; ++k)
         c.push_back({"active_r" + std::to_string(k), CsvFormat::integer});
     for (auto name : kPhaseNames) c.push_back({"t_" + std::string(name), CsvFormat::timing});
@@ -36,7 +38,8 @@ diagnostics_row(const Diagnostics& d, const std::array<double, kNumPhases>& phas
                             d.momentum[0], d.momentum[1], d.momentum[2],
                             d.angular_momentum[0], d.angular_momentum[1], d.angular_momentum[2],
                             d.nc_min, d.nc_mean, d.nc_max, d.rho_max, d.l1_rho, d.e_stir,
-                            d.work.active, d.work.pairs, d.work.rung_max};
+                            d.work.active, d.work.pairs, d.work.rung_max,
+                            d.work.compute_imbalance(d.nranks)};
     // clang-format on
     if (rungs) row.insert(row.end(), d.work.by_rung.begin(), d.work.by_rung.end());
     row.insert(row.end(), phases.begin(), phases.end());

@@ -124,7 +124,13 @@ class RunDriver {
                 continue;
             }
             check_step();
+            if (sim_->step_count() == step0_ + 1) { // the halo line leaves out the first step
+                const CommRecord& rec = sim_->domain().comm_record();
+                first_halo_ = {rec.halo_exposed_seconds(), rec.halo_behind_compute_seconds()};
+            }
             updates_ += sim_->diagnostics().work.active;
+            compute_.sum += sim_->diagnostics().work.compute_sum;
+            compute_.max += sim_->diagnostics().work.compute_max;
             if (const std::string notice = sim_->take_sdc_notice(); root() && !notice.empty())
                 out_ << "sdc watchdog: " << notice << "\n";
             if (root()) {
@@ -154,12 +160,14 @@ class RunDriver {
         MPI_Allreduce(MPI_IN_PLACE, &rss, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
         const double steps = double(sim_->step_count() - step0_);
         const CommRecord& rec = sim_->domain().comm_record();
-        const CommSummary comm = summarise_comm(rec, MPI_COMM_WORLD);
+        const CommSummary comm = summarise_comm(rec, MPI_COMM_WORLD, first_halo_);
         if (cfg_.comm_report)
             write_comm_matrix(std::filesystem::path(cfg_.out_dir) / "comm_matrix.csv", rec, steps,
                               MPI_COMM_WORLD);
         if (root()) print_summary(out_, *sim_, steps, updates_, wall, output_wall_, nranks_, rss);
-        if (root() && nranks_ > 1) print_comm_summary(out_, comm, sim_->diagnostics(), steps);
+        if (root() && nranks_ > 1)
+            print_comm_summary(out_, comm, sim_->diagnostics(), steps,
+                               {compute_.sum / nranks_, compute_.max}, sim_->imbalance());
     }
 
   private:
@@ -236,7 +244,9 @@ class RunDriver {
     std::string units_;
     std::vector<Field> fields_;
     double t_end_ = -1, mtbf_ = 0, wall0_ = 0, output_wall_ = 0;
-    double updates_ = 0; // particle updates since this process started stepping
+    double updates_ = 0;                     // particle updates since this process started stepping
+    std::array<double, 2> first_halo_{0, 0}; // halo seconds after the first step (summary)
+    SumMax compute_{0, 0}; // compute seconds per step, summed over ranks / of the slowest, summed
     std::unique_ptr<CsvTable> csv_;
     std::unique_ptr<OutputSchedule> schedule_;
     std::int64_t step0_ = 0, last_checkpoint_ = -1;

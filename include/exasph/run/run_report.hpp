@@ -104,9 +104,10 @@ void print_summary(std::ostream& out, const Simulation<T, L>& sim, double steps,
 }
 
 // Several ranks: the point-to-point traffic per rank (CommRecord, over this run's steps) and the
-// last step's halo ratio.
+// last step's halo ratio; the load balance: each step's compute seconds (outside MPI waits) of
+// the slowest rank and of the mean rank, summed over the steps (`compute`: mean rank, slowest).
 inline void print_comm_summary(std::ostream& out, const CommSummary& c, const Diagnostics& d,
-                               double steps) {
+                               double steps, SumMax compute, double count_imbalance) {
     const double per = steps > 0 ? 1.0 / (steps * 1e6) : 0.0; // MB per step
     out << strprintf("communication: halo peers per rank mean %.1f max %.0f; halo ratio mean "
                      "%.3f max %.3f (last step); MB sent per step: halos per rank mean %.3g max "
@@ -114,6 +115,17 @@ inline void print_comm_summary(std::ostream& out, const CommSummary& c, const Di
                      c.halo_peers_mean, c.halo_peers_max, d.halo_ratio_mean, d.halo_ratio_max,
                      c.halo_bytes_mean * per, c.halo_bytes_max * per, c.migration_bytes * per,
                      c.gravity_bytes * per);
+    const double later = steps > 1 ? 1.0 / (steps - 1) : 0.0; // per step after the first
+    out << strprintf("halo exchanges of the SPH passes: %.4g s per step in them (packing, "
+                     "waiting, unpacking), %.4g s in flight behind computation (mean rank, steps "
+                     "after the first)\n",
+                     c.halo_exposed * later, c.halo_behind_compute * later);
+    const double mean = compute.sum, lost = compute.max > 0 ? 1 - mean / compute.max : 0;
+    out << strprintf("load balance: compute seconds per step, slowest rank %.4g, mean %.4g "
+                     "(max/mean %.3f: %.1f %% of the compute time waits for the slowest); owned "
+                     "particles max/mean %.3f (last step)\n",
+                     steps > 0 ? compute.max / steps : 0.0, steps > 0 ? mean / steps : 0.0,
+                     mean > 0 ? compute.max / mean : 1.0, 100 * lost, count_imbalance);
 }
 
 } // namespace exasph

@@ -40,6 +40,11 @@ template <class T, class L>
 class BlockClock {
   public:
     static constexpr double kTicks = double(std::int64_t(1) << kMaxRung);
+    // An inactive particle's work in a sub-step relative to an active one's (drift, sort, trees,
+    // halos): Evrard -n 40 after t = 0.8 on 4 ranks of ~8,400 particles, a sub-step took 0.097 s
+    // plus 70 us per active particle of the rank (fit over 128 sub-steps): 12 us per particle,
+    // 0.17 of an active one (docs/scaling.md).
+    static constexpr float kInactiveCost = 0.15f;
 
     // Refuses what block steps do not handle yet; allocates the rung and half-step fields and
     // makes the derived fields move with the particles (inactive ones keep theirs).
@@ -90,6 +95,16 @@ class BlockClock {
             list_.push_back(i);
             work.by_rung[std::size_t(r)] += 1;
         }
+    }
+    // --balance cost: each owned particle's expected work in this tick's sub-step, in units of
+    // an active particle's: an inactive one still drifts and is sorted, treed and exchanged
+    // (kInactiveCost). Known before the sync; depends on the state only (restarts exactly).
+    const float* costs(const ParticleSet<T>& ps, std::size_t n) {
+        const T* rung = ps.data(Field::rung);
+        cost_.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            cost_[i] = tick_ == 0 || on_rung_boundary(tick_, int(rung[i])) ? 1.0f : kInactiveCost;
+        return cost_.data();
     }
     const std::uint8_t* active() const { return active_.data(); }
     ParticleRange active_range() const { return {list_.data(), list_.size()}; }
@@ -174,6 +189,7 @@ class BlockClock {
     FieldArray<std::uint8_t> active_;
     FieldArray<std::uint32_t> list_;
     FieldArray<int> need_;
+    std::vector<float> cost_; // --balance cost
 };
 
 } // namespace exasph

@@ -16,20 +16,27 @@ namespace exasph {
 
 // The work of a step: the particles with forces (all with global steps, the active ones with
 // block time steps) and the pair terms of one neighbour pass over them; with block steps also
-// the shortest rung in use and the active particles of each rung. Reduced with the diagnostics.
+// the shortest rung in use and the active particles of each rung; the compute seconds of the
+// step (wall time outside MPI waits: sum and maximum over ranks). Reduced with the diagnostics.
 struct StepWork {
-    static constexpr std::size_t kElements = 2 + kMaxRung + 1;
-    double active = 0, pairs = 0, rung_max = 0;
+    static constexpr std::size_t kElements = 3 + kMaxRung + 1;
+    double active = 0, pairs = 0, rung_max = 0, compute_sum = 0, compute_max = 0;
     std::array<double, kMaxRung + 1> by_rung{};
 
     void pack(SumMax* e) const {
         e[0] = {active, rung_max};
         e[1].sum = pairs;
-        for (int k = 0; k <= kMaxRung; ++k) e[2 + k].sum = by_rung[std::size_t(k)];
+        e[2] = {compute_sum, compute_max};
+        for (int k = 0; k <= kMaxRung; ++k) e[3 + k].sum = by_rung[std::size_t(k)];
     }
     void unpack(const SumMax* e) {
         active = e[0].sum, rung_max = e[0].max, pairs = e[1].sum;
-        for (int k = 0; k <= kMaxRung; ++k) by_rung[std::size_t(k)] = e[2 + k].sum;
+        compute_sum = e[2].sum, compute_max = e[2].max;
+        for (int k = 0; k <= kMaxRung; ++k) by_rung[std::size_t(k)] = e[3 + k].sum;
+    }
+    // The most loaded rank's compute seconds over the mean (1 when nothing was timed).
+    double compute_imbalance(int nranks) const {
+        return compute_sum > 0 ? compute_max * nranks / compute_sum : 1.0;
     }
 };
 
@@ -38,6 +45,7 @@ struct Diagnostics {
     std::int64_t step = 0;
     double time = 0, dt = 0;
     std::uint64_t n = 0;
+    int nranks = 1;
     double ekin = 0, eint = 0, epot = 0, etot = 0;
     std::array<double, 3> momentum{};
     std::array<double, 3> angular_momentum{}; // about the origin
@@ -157,6 +165,7 @@ inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
     d.nc_mean = d.n > 0 ? e[8].sum / double(d.n) : 0.0;
     d.nc_max = e[8].max;
     d.nc_min = -e[9].max;
+    d.nranks = nranks;
     d.halo_ratio_mean = e[10].sum / nranks;
     d.halo_ratio_max = e[10].max;
     d.rho_max = e[11].max;

@@ -1,18 +1,129 @@
 #pragma once
+#include <algorithm>
+#include <limits>
+#include <type_traits>
+
 #include "exasph/config/config.hpp"
 #include "exasph/domain/domain.hpp"
 #include "exasph/gravity/gravity_solver.hpp"
 #include "exasph/sim/phases.hpp"
 #include "exasph/sph/passes.hpp"
+#include "exasph/tree/neighbour_groups.hpp"
 #include "exasph/util/timer.hpp"
 
 namespace exasph {
+
+// Whether launcher L runs a pass over some groups of the lists (NeighbourGroups).
+template <class L>
+constexpr bool splits_groups() {
+    if constexpr (requires { L::kSplitsGroups; })
+        return L::kSplitsGroups;
+    else
+        return false;
+}
+
+// The passes of SPEC 3-6 with what they need from the step, each timed as its phase.
+template <class T>
+struct HydroInputs {
+    const Box<T>& box;
+    const KernelView<T>& k;
+    const EosParams& eos;
+    const Config& cfg;
+    const GravitySolver<T>* gravity;
+    bool first;
+
+    Dissipation<T> dissipation() const {
+        return Dissipation<T>::of(cfg.alpha, cfg.conductivity, cfg.av_limiter, cfg.ng0,
+                                  cfg.tensile_stress, cfg.torque_free, cfg.tensile_exponent,
+                                  cfg.tensile_stress_positive);
+    }
+    std::uint8_t iad_halos() const { return cfg.av_limiter ? kHaloIad | kHaloGrad : kHaloIad; }
+
+    // SPEC 3-4 and, with gravity, the softening's zeta, over the lists or a part of them.
+    template <class L, class Part>
+    void density(ParticleSet<T>& ps, const Part& nl) const {
+        compute_density<L>(ps, nl, box, k, eos, first && eos.kind == EosKind::tait);
+        if (gravity) compute_softening_zeta<L>(ps, nl, gravity->softening().view(), gravity->G());
+    }
+    template <class L, class Part>
+    void iad(ParticleSet<T>& ps, const Part& nl, const Dissipation<T>& diss) const {
+        compute_iad<L>(ps, nl, box, k, cfg.av_limiter, cfg.torque_free, diss);
+    }
+    template <class L, class Part, class Wrap>
+    double momentum_energy(ParticleSet<T>& ps, const Part& nl, const Dissipation<T>& diss,
+                           Wrap wrap) const {
+        return compute_momentum_energy<L>(ps, nl, box, k, diss, T(cfg.courant), wrap);
+    }
+};
+
+// One exchange after each pass: density (+ EOS, zeta), its halos, IAD and its halos, momentum and
+// energy.
+template <class L, class T, class Lists, class Wrap>
+double hydro_passes_in_turn(ParticleSet<T>& ps, const Lists& nl, const HydroInputs<T>& in,
+                            Domain<T>& domain, PhaseTimer<kNumPhases>& timer, Wrap wrap) {
+    in.template density<L>(ps, nl);
+    timer.stop(kDensity);
+    domain.exchange_halos(ps, kHaloDensity);
+    timer.stop(kDensityHalos);
+    const auto diss = in.dissipation();
+    in.template iad<L>(ps, nl, diss);
+    domain.exchange_halos(ps, in.iad_halos());
+    timer.stop(kIad);
+    return in.template momentum_energy<L>(ps, nl, diss, wrap);
+}
+
+// Runs `pass` over `part` in pieces, letting MPI move the exchange in flight between them.
+template <class T, class Pass>
+double while_in_flight(const NeighbourGroups<T>& part, Domain<T>& domain, PostedHalos& x,
+                       Pass pass) {
+    constexpr std::size_t kPieces = 16;
+    double least = std::numeric_limits<double>::infinity();
+    for (std::size_t c = 0; c < kPieces; ++c) {
+        least = std::min(least, double(pass(part.part(c, kPieces))));
+        domain.progress_halos(x);
+    }
+    return least;
+}
+
+// The same with each exchange in flight behind work that does not need it (issue 23): the
+// density of the particles other ranks receive comes first, its exchange is posted, the other
+// densities and the IAD of the groups with only owned neighbours follow; then the IAD of the
+// groups that read halos, its exchange posted, the momentum-energy of the owned-only groups.
+template <class L, class T, class Wrap>
+double hydro_passes_overlapped(ParticleSet<T>& ps, const NeighbourLists<T>& nl,
+                               const HydroInputs<T>& in, Domain<T>& domain,
+                               PhaseTimer<kNumPhases>& timer, Wrap wrap) {
+    const auto parts = split_for_halo_overlap(nl, domain.sent_flags());
+    const auto diss = in.dissipation();
+    auto density = [&](const NeighbourGroups<T>& p) { return in.template density<L>(ps, p), 0; };
+    auto iad = [&](const NeighbourGroups<T>& p) { return in.template iad<L>(ps, p, diss), 0; };
+    auto momentum_energy = [&](const NeighbourGroups<T>& p) {
+        return in.template momentum_energy<L>(ps, p, diss, wrap);
+    };
+    density(parts.sending);
+    PostedHalos density_halos = domain.post_halos(ps, kHaloDensity);
+    while_in_flight(parts.not_sending, domain, density_halos, density);
+    timer.stop(kDensity);
+    while_in_flight(parts.owned_only, domain, density_halos, iad);
+    timer.stop(kIad);
+    domain.finish_halos(ps, density_halos);
+    timer.stop(kDensityHalos);
+    iad(parts.reading_halos);
+    PostedHalos iad_halos = domain.post_halos(ps, in.iad_halos());
+    timer.stop(kIad);
+    const double owned = while_in_flight(parts.owned_only, domain, iad_halos, momentum_energy);
+    timer.stop(kMomentumEnergy);
+    domain.finish_halos(ps, iad_halos);
+    timer.stop(kIad);
+    return std::min(owned, momentum_energy(parts.reading_halos));
+}
 
 // SPEC 3-6, the SPH passes of a step with their halo exchanges, each timed as its phase:
 // density and EOS (Tait: rho0 from the first step; volume weights settled first), with gravity
 // the softening's zeta, IAD, momentum and energy (its kernel passed through `wrap`), with
 // gravity the softening's force. Returns the Courant limit of the pass (+infinity when `wrap`
-// keeps each particle's own).
+// keeps each particle's own). On several ranks with a launcher that splits passes the halo
+// exchanges overlap the work (unless --no-halo-overlap).
 template <class L, class T, class Lists, class Wrap>
 double hydro_forces(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const KernelView<T>& k,
                     const EosParams& eos, const Config& cfg, Domain<T>& domain,
@@ -21,18 +132,15 @@ double hydro_forces(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, cons
     if (first && cfg.volume_elements)
         settle_volume_weights<L>(ps, nl, box, k, eos, domain.n_owned(), cfg.energy_weights,
                                  [&] { domain.exchange_halos(ps, kHaloSync); });
-    compute_density<L>(ps, nl, box, k, eos, first && eos.kind == EosKind::tait);
-    if (gravity) compute_softening_zeta<L>(ps, nl, gravity->softening().view(), gravity->G());
-    timer.stop(kDensity);
-    domain.exchange_halos(ps, kHaloDensity);
-    timer.stop(kDensityHalos);
-    const auto diss =
-        Dissipation<T>::of(cfg.alpha, cfg.conductivity, cfg.av_limiter, cfg.ng0, cfg.tensile_stress,
-                           cfg.torque_free, cfg.tensile_exponent, cfg.tensile_stress_positive);
-    compute_iad<L>(ps, nl, box, k, cfg.av_limiter, cfg.torque_free, diss);
-    domain.exchange_halos(ps, cfg.av_limiter ? kHaloIad | kHaloGrad : kHaloIad);
-    timer.stop(kIad);
-    const double courant = compute_momentum_energy<L>(ps, nl, box, k, diss, T(cfg.courant), wrap);
+    const HydroInputs<T> in{box, k, eos, cfg, gravity, first};
+    double courant = 0;
+    if constexpr (splits_groups<L>() && std::is_same_v<Lists, NeighbourLists<T>>) {
+        courant = domain.nranks() > 1 && !cfg.no_halo_overlap
+                      ? hydro_passes_overlapped<L>(ps, nl, in, domain, timer, wrap)
+                      : hydro_passes_in_turn<L>(ps, nl, in, domain, timer, wrap);
+    } else {
+        courant = hydro_passes_in_turn<L>(ps, nl, in, domain, timer, wrap);
+    }
     if (gravity) add_softening_correction<L>(ps, nl, k); // SPEC 8's softening
     return courant;
 }

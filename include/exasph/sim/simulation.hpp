@@ -75,7 +75,9 @@ class Simulation {
         recovered_ = false;
         const bool corrupt = safety_.corrupted_before(ps_, n_owned(), box_, step_ + 1, dt_m1_,
                                                       eos_.kind == EosKind::ideal_gas);
-        if (domain_.count_particles(ps_, box_, corrupt))
+        const bool by_cost = cfg_.balance == Balance::cost && blocks_;
+        const float* cost = by_cost ? blocks_->costs(ps_, n_owned()) : nullptr;
+        if (domain_.count_particles(ps_, box_, corrupt, cost))
             return roll_back("the state check before step " + std::to_string(step_ + 1), step_ + 1);
         point_pending_ |= safety_.point_due(step_); // block steps: waits for a block's end
         if (point_pending_ && at_sync_point())
@@ -247,10 +249,12 @@ class Simulation {
 
     // SPEC 10 sums, run-control flags and the particles' extent (next box): one collective.
     void diagnose(double dt) {
+        const double waited = domain_.comm_record().waited_in_step(); // compute: the rest
+        work_.compute_sum = work_.compute_max = std::max(0.0, timer_.step_total() - waited);
         std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags + StepWork::kElements);
         work_.pack(e.data() + kDiagWithExtent + kNumControlFlags);
         local_diagnostics(ps_, n_owned(), domain_.n_halo(), exact_, time_ - dt, cfg_.ng0, e.data());
-        Domain<T>::local_extent(ps_, n_owned(), e.data() + kDiagElements);
+        local_extent(ps_, n_owned(), e.data() + kDiagElements);
         flags_.pack(e.data() + kDiagWithExtent);
         domain_.collectives().allreduce_sum_max(e);
         flags_.unpack(e.data() + kDiagWithExtent);
@@ -262,7 +266,7 @@ class Simulation {
         diag_.dt = dt;
         if (stirring_) stirring_->add_energy(dt * diag_.stir_power);
         diag_.e_stir = stirring_ ? stirring_->state().energy_in : 0.0;
-        Domain<T>::apply_extent(box_, e.data() + kDiagElements);
+        apply_extent(box_, e.data() + kDiagElements);
     }
 
     Config cfg_;

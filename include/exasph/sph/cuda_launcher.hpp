@@ -15,6 +15,7 @@ namespace exasph {
 
 struct CudaLauncher {
     static constexpr Backend kBackend = Backend::cuda;
+    static constexpr bool kSplitsGroups = false; // whole passes: no halo overlap
     template <class T>
     using Lists = DeviceLists<T>;
 

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "exasph/tree/batch_lists.hpp"
+#include "exasph/tree/neighbour_groups.hpp"
 #include "exasph/tree/neighbour_lists.hpp"
 
 // Launchers: how a per-particle kernel runs over the particles. A kernel is a functor with an
@@ -64,6 +65,7 @@ inline constexpr bool kReduces =
 // OpenMP threads of this rank: static schedule over particles, dynamic over leaf groups.
 struct OmpLauncher : OmpParticleLoops {
     static constexpr Backend kBackend = Backend::openmp;
+    static constexpr bool kSplitsGroups = true; // takes NeighbourGroups: overlaps halo exchanges
     template <class T>
     using Lists = NeighbourLists<T>;
 
@@ -72,16 +74,30 @@ struct OmpLauncher : OmpParticleLoops {
     // returns a number (else +infinity).
     template <class T, class Kernel>
     static double for_each_neighbourhood(const NeighbourLists<T>& nl, const Kernel& k) {
-        const auto groups = static_cast<std::int64_t>(nl.num_groups());
+        return for_groups(nl, nullptr, nl.num_groups(), k);
+    }
+    // Only the listed groups (a pass split around a halo exchange in flight).
+    template <class T, class Kernel>
+    static double for_each_neighbourhood(const NeighbourGroups<T>& part, const Kernel& k) {
+        return for_groups(*part.lists, part.groups.data(), part.groups.size(), k);
+    }
+
+  private:
+    // Groups which[0, n) of the lists (which == nullptr: groups 0 .. n - 1).
+    template <class T, class Kernel>
+    static double for_groups(const NeighbourLists<T>& nl, const std::uint32_t* which, std::size_t n,
+                             const Kernel& k) {
+        const auto groups = static_cast<std::int64_t>(n);
         double least = std::numeric_limits<double>::infinity();
 #pragma omp parallel reduction(min : least)
         {
             typename NeighbourLists<T>::Decoder dec(nl);
 #pragma omp for schedule(dynamic, 8)
-            for (std::int64_t g = 0; g < groups; ++g) {
-                dec.start(std::size_t(g));
-                const auto end = nl.group_end(std::size_t(g));
-                for (std::uint32_t s = nl.group_begin(std::size_t(g)); s < end; ++s) {
+            for (std::int64_t w = 0; w < groups; ++w) {
+                const std::size_t g = which ? which[w] : std::size_t(w);
+                dec.start(g);
+                const auto end = nl.group_end(g);
+                for (std::uint32_t s = nl.group_begin(g); s < end; ++s) {
                     if constexpr (kReduces<Kernel>)
                         least = std::min(least, double(k(nl.member(s), dec.next())));
                     else
@@ -98,6 +114,7 @@ struct OmpLauncher : OmpParticleLoops {
 // results as OmpLauncher (the lists hold the same neighbours in the same order).
 struct GpuHostLauncher : OmpParticleLoops {
     static constexpr Backend kBackend = Backend::gpu_host;
+    static constexpr bool kSplitsGroups = false; // whole passes: no halo overlap
     template <class T>
     using Lists = BatchLists<T>;
 

@@ -71,6 +71,8 @@ class NeighbourLists {
     std::uint32_t group_begin(std::size_t g) const { return group_first_[g]; }
     std::uint32_t group_end(std::size_t g) const { return group_first_[g + 1]; }
     std::uint32_t member(std::uint32_t s) const { return members_.empty() ? s : members_[s]; }
+    // Whether group g's search reached a halo leaf (its passes then need the halos' fields).
+    bool group_reads_halos(std::size_t g) const { return reads_halos_[g] != 0; }
     std::uint64_t pairs() const { return pairs_; }
     std::uint32_t max_count() const { return max_count_; }
     // Bytes held by the lists (records and group tables).
@@ -190,6 +192,7 @@ class NeighbourLists {
             throw std::logic_error("neighbour lists: the tree does not hold the owned particles");
         if (active && members_.size() == n_owned) members_.clear(); // all active: the identity
         records_.assign(group_leaf_.size(), nullptr);
+        reads_halos_.assign(group_leaf_.size(), 0);
     }
 
     std::uint32_t search_all(const Octree<T>& owned, const Octree<T>* halos, const SearchView<T>& p,
@@ -219,7 +222,9 @@ class NeighbourLists {
                 const auto& group = owned.nodes()[group_leaf_[g]];
                 candidates.clear();
                 collect_leaves(owned, group, box, crit, candidates);
+                const std::size_t owned_candidates = candidates.size();
                 if (halos) collect_leaves(*halos, group, box, crit, candidates);
+                reads_halos_[g] = candidates.size() > owned_candidates;
                 boxes.assign(candidates);
                 rec.clear();
                 out_of_order |= !encode_candidates(candidates, rec);
@@ -245,6 +250,7 @@ class NeighbourLists {
     std::vector<std::uint32_t> group_leaf_;    // the owned tree's leaf of each group
     std::vector<std::uint32_t> members_;       // particle of each slot (empty: the identity)
     std::vector<const std::uint8_t*> records_; // one record per group
+    std::vector<std::uint8_t> reads_halos_;    // per group: a halo leaf among its candidates
     std::vector<codec::Arena> arenas_;         // one per thread: the records' storage
 };
 

@@ -180,6 +180,11 @@ inline int MPI_Waitall(int n, MPI_Request* reqs, MPI_Status*) {
     if (!pending) receives.clear();
     return MPI_SUCCESS;
 }
+// One rank's messages are all sent already: testing completes them.
+inline int MPI_Testall(int n, MPI_Request* reqs, int* done, MPI_Status* st) {
+    *done = 1;
+    return MPI_Waitall(n, reqs, st);
+}
 inline int MPI_Probe(int, int tag, MPI_Comm, MPI_Status* st) {
     for (const auto& m : exasph::serial_mpi::state().mailbox)
         if (m.tag == tag) {

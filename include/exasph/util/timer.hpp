@@ -37,6 +37,11 @@ class PhaseTimer {
         for (std::size_t i = 0; i < NumPhases; ++i) total_[i] += step_[i];
     }
     const std::array<double, NumPhases>& step_times() const { return step_; }
+    double step_total() const {
+        double sum = 0;
+        for (double t : step_) sum += t;
+        return sum;
+    }
     const std::array<double, NumPhases>& total_times() const { return total_; }
 
   private:

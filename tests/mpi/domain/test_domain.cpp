@@ -228,3 +228,35 @@ TEST(Domain, GlobalBucketGrowsOnlyWithTheTotalParticleCount) {
     EXPECT_EQ(effective_global_bucket(128, paper), paper >> 20);
     EXPECT_LE(double(paper) / double(effective_global_bucket(128, paper)), double(1 << 20) + 1);
 }
+
+// Issue 23, --balance cost: the cut balances the leaves' costs, falls back towards counts only
+// as far as the memory bound needs, and is the count cut when the costs are the counts.
+TEST(Domain, CostCutBalancesCostWithinTheMemoryBound) {
+    // 64 leaves of 100 particles; the first 8 hold "active" particles (cost 1 each), the rest
+    // inactive ones (0.15 each): the count cut gives rank 0 of 4 all the active work.
+    std::vector<std::uint64_t> counts(64, 100);
+    std::vector<double> costs(64, 15.0);
+    for (int l = 0; l < 8; ++l) costs[std::size_t(l)] = 100.0;
+    auto rank_cost = [&](const Assignment& a, int r) {
+        double c = 0;
+        for (std::uint32_t l = a.first_leaf[r]; l < a.first_leaf[r + 1]; ++l) c += costs[l];
+        return c;
+    };
+    auto cost_imbalance = [&](const Assignment& a) {
+        double most = 0, total = 0;
+        for (int r = 0; r < 4; ++r)
+            most = std::max(most, rank_cost(a, r)), total += rank_cost(a, r);
+        return most / (total / 4);
+    };
+    const Assignment by_count = assign_leaves(counts, 4);
+    const Assignment loose = assign_leaves_by_cost(counts, costs, 4, 10.0);
+    const Assignment bounded = assign_leaves_by_cost(counts, costs, 4, 1.5);
+    EXPECT_GT(cost_imbalance(by_count), 2.0);
+    EXPECT_LT(cost_imbalance(loose), 1.1);
+    EXPECT_LT(cost_imbalance(bounded), cost_imbalance(by_count));
+    EXPECT_GT(loose.imbalance(), 1.5);   // the pure cost cut needs more than the bound allows
+    EXPECT_LE(bounded.imbalance(), 1.5); // so the bounded one blends in counts
+    EXPECT_GT(bounded.imbalance(), 1.2); // but only as far as needed
+    std::vector<double> as_counts(counts.begin(), counts.end());
+    EXPECT_EQ(assign_leaves_by_cost(counts, as_counts, 4).first_leaf, by_count.first_leaf);
+}
