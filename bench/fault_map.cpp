@@ -49,7 +49,7 @@ Outcome run(const Config& cfg, int steps, std::vector<Field>* carried = nullptr)
         const auto& ps = sim.particles();
         for (std::size_t i = 0; i < sim.n_owned(); ++i)
             for (std::size_t k = 0; k < 9; ++k) o.fields[ps.id[i]][k] = ps.value(kCompared[k], i);
-        o.recoveries = sim.recoveries();
+        o.recoveries = sim.safety().recoveries();
         if (carried)
             for (const auto& info : kFieldTable)
                 if (ps.enabled(info.field)) carried->push_back(info.field);

@@ -17,11 +17,7 @@ exe="${EXASPH_BUILD_DIR:-$root/build}/exasph"
 . "$root/bench/lib.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-mpi=(mpirun -np "$ranks" --bind-to none -x OMP_NUM_THREADS=1)
-if mpirun --version 2>&1 | grep -qE 'Open MPI|OpenRTE'; then
-    mpi+=(--oversubscribe)
-    [ "$(id -u)" = 0 ] && mpi+=(--allow-run-as-root)
-fi
+one_thread_ranks "$ranks"
 
 # run NAME ROUND [OPTIONS]: prints "exposed_s_per_step wall_s"
 run() {

@@ -18,3 +18,13 @@ phase() {
 
 phase_names() { grep 'seconds per step by phase' "$out/log1" | sed 's/.*phase[^:]*: //' |
     awk '{for (i = 1; i < NF; i += 2) printf "%s ", $i}'; }
+
+# one_thread_ranks RANKS: sets the array `mpi` to an mpirun of RANKS ranks x 1 thread, unbound
+# (Open MPI: oversubscribed, and allowed as root when run as root).
+one_thread_ranks() {
+    mpi=(mpirun -np "$1" --bind-to none -x OMP_NUM_THREADS=1)
+    if mpirun --version 2>&1 | grep -qE 'Open MPI|OpenRTE'; then
+        mpi+=(--oversubscribe)
+        [ "$(id -u)" = 0 ] && mpi+=(--allow-run-as-root)
+    fi
+}

@@ -123,7 +123,8 @@ int main(int argc, char** argv) {
         ta.push_back(timed([&] { a.step(); }));
         tb.push_back(timed([&] { b.step(); }));
         if (b.recovered())
-            std::printf("warning: a rollback in the clean run (%s)\n", b.sdc_summary().c_str());
+            std::printf("warning: a rollback in the clean run (%s)\n",
+                        b.safety().summary().c_str());
         ratio.push_back(tb.back() / ta.back());
         checks.push_back(checks_of_one_step(b.particles(), b.n_owned(), b.box()));
         std::printf("| %d | %.4f | %.4f | %.4f | %.4f |\n", r + 1, ta.back(), tb.back(),

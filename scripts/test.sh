@@ -59,7 +59,7 @@ if [ -z "${EXASPH_SKIP_MPICH:-}" ]; then
             -DMPI_CXX_COMPILER=/usr/bin/mpicxx.mpich -DMPIEXEC_EXECUTABLE=/usr/bin/mpiexec.mpich
     fi
     cmake --build "$mpich" -j "$(nproc)" --target test_mpi_domain test_mpi_square_patch \
-        test_mpi_cases test_mpi_gpu_host test_mpi_scale
+        test_mpi_cases test_mpi_gpu_host test_mpi_scale test_mpi_lazy_sync
     (cd "$mpich" && ctest --output-on-failure -j 2 -L mpi)
 fi
 if [ -z "${EXASPH_SKIP_SANITIZE:-}" ]; then

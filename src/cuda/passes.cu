@@ -6,6 +6,7 @@
 #include "exasph/sph/density_kern.hpp"
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/sph/skin_kern.hpp"
 #include "exasph/sph/softening_correction_kern.hpp"
 #include "exasph/sph/stir_kern.hpp"
 #include "exasph/sph/update_kern.hpp"
@@ -56,6 +57,7 @@ namespace exasph {
     EXASPH_CUDA_FOR_EACH_IN(VolumeWeightKernel<double, N>)                                         \
     EXASPH_CUDA_FOR_EACH(StirKernel<double, N>)                                                    \
     EXASPH_CUDA_REDUCE_MIN(AccelerationStepKernel<double, N>)                                      \
+    EXASPH_CUDA_REDUCE_MIN(SkinUseKernel<double, N>)                                               \
     EXASPH_CUDA_BLOCK_STEPS(N)
 
 // Block time steps (sph/block_passes.hpp).

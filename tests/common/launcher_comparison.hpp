@@ -17,7 +17,7 @@ template <class L>
 std::vector<ParticleState> run_with(const Config& cfg, int steps, Diagnostics* diag) {
     Simulation<double, L> sim(cfg, make_case(cfg));
     for (int s = 0; s < steps; ++s) sim.step();
-    EXPECT_EQ(sim.recoveries(), 0);
+    EXPECT_EQ(sim.safety().recoveries(), 0);
     *diag = sim.diagnostics();
     auto st = owned_state(sim);
     std::sort(st.begin(), st.end(), [](const auto& a, const auto& b) { return a.id < b.id; });

@@ -7,6 +7,7 @@
 #include "exasph/sph/density_kern.hpp"
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/sph/skin_kern.hpp"
 #include "exasph/sph/update_kern.hpp"
 
 using namespace exasph;
@@ -52,6 +53,7 @@ void instantiate(ParticleView<T> p, Box<T> box, KernelView<T> kv, const std::uin
     particle_pass<<<1, 32>>>(ViscosityKernel<T>{p, T(1), T(0.05), T(1), T(0.2)}, 32, out);
     particle_pass<<<1, 32>>>(VolumeWeightKernel<T>{p}, 32, out);
     particle_pass<<<1, 32>>>(AccelerationStepKernel<T>{p, 0.2}, 32, out);
+    particle_pass<<<1, 32>>>(SkinUseKernel<T>{p, nullptr, T(1e-3), T(1e-3), T(100)}, 32, out);
     // Block time steps (sph/block_kern.hpp).
     particle_pass<<<1, 32>>>(OwnStepLimitKernel<T>{p, 0.0, 1e-3, 0.1, 2.0}, 32, out);
     particle_pass<<<1, 32>>>(CloseStepKernel<T>{p, 1e-3, 1.0, 0, false}, 32, out);

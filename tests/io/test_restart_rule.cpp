@@ -119,6 +119,17 @@ TEST_F(RestartRule, EveryParameterIsHonouredOrRefused) {
         if (!is_flag(p)) args.push_back(changed_value(p));
         if (std::string(p.key) == "mtbf") args.insert(args.end(), {"--checkpoint-every", "auto"});
         SCOPED_TRACE(flag);
+        if (std::string(p.key) == "sync_every") { // this checkpoint's run has self-gravity
+            try {
+                run_to_header(args);
+                ADD_FAILURE() << flag << " was accepted with self-gravity";
+            } catch (const Error& e) {
+                EXPECT_EQ(e.exit_code(), 2);
+                EXPECT_NE(std::string(e.what()).find(flag), std::string::npos) << e.what();
+            }
+            ++refused;
+            continue;
+        }
         if (p.restart == OnRestart::given) {
             Config cfg;
             parse_and_check(args, cfg);

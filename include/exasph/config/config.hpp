@@ -65,6 +65,8 @@ struct Config {
     int leaf_size = 64;                               // local octree leaf size
     int global_bucket = 128;          // global (top) tree leaf size: the unit of MPI load balance
     Balance balance = Balance::count; // cut the SFC by particle counts or by expected work
+    int sync_every = 1;               // most steps between domain syncs (sim/sync_schedule.hpp)
+    int diagnostics_every = 1;        // steps between the diagnostics sums (and rows)
     CurveKind curve = CurveKind::hilbert;
     bool lattice = false; // glass cases: regular lattice instead of the (cached) glass
     std::vector<std::string> case_params; // --param KEY=VALUE: case parameters

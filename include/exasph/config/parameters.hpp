@@ -10,64 +10,9 @@
 #include "exasph/config/choices.hpp"
 #include "exasph/config/config.hpp"
 #include "exasph/config/custom_values.hpp"
+#include "exasph/config/param_types.hpp"
 
 namespace exasph {
-
-// What --restart does with a parameter.
-enum class OnRestart {
-    kept,    // part of the run's physics: stored in every output file ("param:KEY"), restored
-             // from the checkpoint, and refused if given with --restart
-    initial, // shapes only the initial conditions (the checkpoint holds the particles):
-             // refused if given with --restart
-    given,   // run control: a restart takes it from its own command line (or the default)
-};
-
-// Bounds a numeric parameter's value must lie in (checked by the command line).
-struct ValueRange {
-    enum Kind { any, closed, positive, nonnegative } kind = any;
-    double lo = 0, hi = 0;
-};
-inline constexpr ValueRange in_range(double lo, double hi) {
-    return {ValueRange::closed, lo, hi};
-}
-// Whether x is a finite value the range allows (what the command line's checks accept).
-inline constexpr bool admits(const ValueRange& r, double x) {
-    if (!(x - x == 0)) return false; // NaN or infinite
-    switch (r.kind) {
-    case ValueRange::closed:
-        return x >= r.lo && x <= r.hi;
-    case ValueRange::positive:
-        return x > 0;
-    case ValueRange::nonnegative:
-        return x >= 0;
-    default:
-        return true;
-    }
-}
-inline constexpr ValueRange kPositive{ValueRange::positive};
-inline constexpr ValueRange kNonNegative{ValueRange::nonnegative};
-
-// The member of Config a parameter sets. Lists (-f, --param) take repeated or comma-separated
-// values; enums take one of their names (config/choices.hpp); bools are flags.
-using ParamMember =
-    std::variant<double Config::*, int Config::*, std::int64_t Config::*, bool Config::*,
-                 std::string Config::*, std::vector<std::string> Config::*, CurveKind Config::*,
-                 Scheme Config::*, SdcPolicy Config::*, RollbackStore Config::*,
-                 BackendChoice Config::*, TimeStepping Config::*, Balance Config::*, CustomValue>;
-
-// One run parameter, declared once: the command line, --help, the restart rule, the checkpoint
-// attributes and the run header are all generated from kParameters.
-struct Param {
-    const char* flags; // CLI11 option names: "-s,--steps"
-    const char* key;   // attribute "param:KEY" in output files, and the name in the run header
-    const char* help;
-    const char* unit; // "" for counts, flags and dimensionless numbers
-    OnRestart restart;
-    ParamMember member;
-    ValueRange range = {};
-    bool show_default = true; // false where the default is a sentinel ("not given")
-    char delimiter = '\0';    // lists: separator of several values in one argument
-};
 
 // clang-format off
 inline const std::array kParameters{
@@ -196,6 +141,12 @@ inline const std::array kParameters{
           "the SPH passes before the next pass, instead of computing the particles that do not "
           "need it meanwhile (to measure what the overlap hides)", "", OnRestart::given,
           &Config::no_halo_overlap},
+    Param{"--sync-every", "sync_every", "Most steps between domain syncs (global tree counts, "
+          "load balance, migration, halo discovery; one collective each). In between, the halos "
+          "found at the last sync (with a skin of the smallest h) are refreshed point to point, "
+          "and a sync comes early once some particle has moved, or its h grown, by half the "
+          "skin. Global time steps without self-gravity only; 1: every step", "",
+          OnRestart::given, &Config::sync_every, in_range(1, 1 << 20)},
     Param{"--leaf-size", "leaf_size", "Local octree leaf size (particles)", "", OnRestart::kept,
           &Config::leaf_size, in_range(1, 4096)},
     Param{"--curve", "curve", "Space-filling curve: hilbert or morton", "", OnRestart::kept, &Config::curve},
@@ -224,6 +175,11 @@ inline const std::array kParameters{
     Param{"-f,--fields", "fields", "Snapshot fields, comma-separated (default: every snapshot "
           "field the run carries); x,y,z are always written", "", OnRestart::given,
           &Config::snapshot_fields, {}, false, ','},
+    Param{"--diagnostics-every", "diagnostics_every", "Sum the diagnostics (energies, "
+          "momenta, the next box; one collective) and write their row every N steps, and at "
+          "syncs, outputs and the end; the conservation watchdog checks the steps whose previous "
+          "step was summed too (global time steps only)", "", OnRestart::given,
+          &Config::diagnostics_every, in_range(1, 1 << 20)},
     Param{"--comm-report", "comm_report", "Write OUT/comm_matrix.csv at the end: per rank, "
           "peer and kind of traffic (halo, migration, gravity), the point-to-point messages and "
           "bytes sent and received (tools/comm_matrix.py draws it)", "", OnRestart::given,

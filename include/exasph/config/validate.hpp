@@ -38,6 +38,10 @@ inline void validate_config(const Config& cfg) {
     if (cfg.checkpoint_auto && cfg.checkpoint_minutes > 0)
         throw input_error("--checkpoint-every auto and --checkpoint-minutes exclude each other",
                           true);
+    if (cfg.timesteps == TimeStepping::block && (cfg.sync_every > 1 || cfg.diagnostics_every > 1))
+        throw input_error(std::string(cfg.sync_every > 1 ? "--sync-every" : "--diagnostics-every") +
+                              " above 1 needs global time steps (--timesteps global)",
+                          true);
     if (const std::string opt = option_needing_files(cfg); !kHaveHdf5 && !opt.empty())
         throw input_error(opt + ": this build has no HDF5, which snapshots, checkpoints and "
                                 "initial-condition files need (configure with -DEXASPH_HDF5=ON)",

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <limits>
+#include <vector>
 
 #include "exasph/domain/collectives.hpp"
 #include "exasph/particles/particle_set.hpp"
@@ -36,6 +37,28 @@ void apply_extent(Box<T>& box, const SumMax* ext) {
         box.lo[d] = T(lo - pad);
         box.hi[d] = T(hi + pad);
     }
+}
+
+// Fits the open axes of the box to the first n particles of every rank: one collective, none
+// when every axis is periodic (start-up, and a sync whose box is older than the positions).
+template <class T>
+void refit_box_to_particles(const ParticleSet<T>& ps, std::size_t n, Box<T>& box,
+                            Collectives& coll) {
+    if (box.periodic[0] && box.periodic[1] && box.periodic[2]) return;
+    std::vector<SumMax> ext(6);
+    local_extent(ps, n, ext.data());
+    coll.allreduce_sum_max(ext);
+    apply_extent(box, ext.data());
+}
+
+// The box with its open axes unbounded: what a state check may assume of positions that moved
+// since the box was last fitted (--diagnostics-every, --sync-every).
+template <class T>
+Box<T> with_open_axes_unbounded(Box<T> box) {
+    for (int d = 0; d < 3; ++d)
+        if (!box.periodic[d])
+            box.lo[d] = std::numeric_limits<T>::lowest(), box.hi[d] = std::numeric_limits<T>::max();
+    return box;
 }
 
 } // namespace exasph

@@ -29,8 +29,9 @@ inline void sum_max_op(void* in, void* inout, int* len, MPI_Datatype*) {
 }
 } // namespace detail
 
-// The collectives of the step, counted: the hot path has exactly three per step (global tree
-// counts + hmax, minimum time step, conservation sums + next box), and tests check the counter.
+// The collectives of the step, counted: the hot path has three per step (global tree counts +
+// hmax, minimum time step, conservation sums + next box), a typical step only the second with
+// --sync-every and --diagnostics-every (sim/sync_schedule.hpp); tests check the counter.
 // It also keeps the record of the point-to-point traffic (record(): halos, migration, gravity),
 // filled by the functions that post those messages.
 class Collectives {

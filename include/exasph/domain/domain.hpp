@@ -13,6 +13,7 @@
 #include "exasph/domain/global_tree.hpp"
 #include "exasph/domain/halo_discovery.hpp"
 #include "exasph/domain/halo_exchange.hpp"
+#include "exasph/domain/leaf_counts.hpp"
 #include "exasph/domain/particle_exchange.hpp"
 #include "exasph/domain/sfc_order.hpp"
 #include "exasph/particles/particle_set.hpp"
@@ -36,14 +37,12 @@ class Domain {
     // all particles and refines the global tree until no leaf exceeds the global bucket size.
     void init(ParticleSet<T>& ps, Box<T>& box) {
         n_owned_ = ps.size();
-        std::vector<SumMax> ext(6);
-        local_extent(ps, n_owned_, ext.data());
-        coll_.allreduce_sum_max(ext);
-        apply_extent(box, ext.data());
+        refit_box_to_particles(ps, n_owned_, box, coll_);
         for (int iter = 0; iter < 64; ++iter) {
             auto keys = compute_keys(ps, box);
             auto leaf = leaves_of(keys);
-            auto counts = global_counts(ps, leaf);
+            auto counts =
+                reduce_leaf_counts(ps.data(Field::h), leaf, tree_.num_leaves(), coll_).count;
             if (!tree_.refine(counts, bucket_for(counts))) {
                 assign_leaves(counts, coll_.size()); // more ranks than leaves fail here, early
                 return;
@@ -78,17 +77,18 @@ class Domain {
         coll_.record().start_step();
         keys_ = compute_keys(ps, box);
         leaf_ = leaves_of(keys_);
-        bool any_vote = false;
-        counts_ = global_counts(ps, leaf_, local_vote, &any_vote, cost);
-        return any_vote;
+        counts_ = reduce_leaf_counts(ps.data(Field::h), leaf_, tree_.num_leaves(), coll_,
+                                     local_vote, cost);
+        return counts_.any_vote;
     }
 
     // The second half: migration, sort, local tree, halos.
     void distribute(ParticleSet<T>& ps, const Box<T>& box) {
-        asg_ = costs_.empty() ? assign_leaves(counts_, coll_.size())
-                              : assign_leaves_by_cost(counts_, costs_, coll_.size());
+        const auto& counts = counts_.count;
+        asg_ = counts_.cost.empty() ? assign_leaves(counts, coll_.size())
+                                    : assign_leaves_by_cost(counts, counts_.cost, coll_.size());
         asg_.leaf_keys = tree_.keys();
-        asg_.leaf_count = counts_;
+        asg_.leaf_count = counts;
         std::vector<int> dest(ps.size());
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < ps.size(); ++i) dest[i] = asg_.owner[leaf_[i]];
@@ -108,7 +108,30 @@ class Domain {
                                   ps.data(Field::h));
         std::vector<std::uint64_t>().swap(keys);
         discover_halos(ps, box);
-        tree_.refine(counts_, bucket_for(counts_)); // for the next step; counts belong to this tree
+        tree_.refine(counts, bucket_for(counts)); // for the next step; counts belong to this tree
+    }
+
+    // A step without a sync (--sync-every): the decomposition and the halo lists of the last
+    // sync stay; the trees keep their structure and take their particles' new bounds (the
+    // searches stay exact, their boxes only loosen), and the halos get the kHaloSync fields.
+    void refresh(ParticleSet<T>& ps) {
+        coll_.record().start_step();
+        local_tree_.update_bounds(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
+                                  ps.data(Field::h));
+        if (plan_.partners.empty()) return;
+        exchange_halos(ps, kHaloSync);
+        halo_tree_.update_bounds(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),
+                                 ps.data(Field::h));
+    }
+    // With a skin, halo discovery reaches kHaloSkinOverH x the smallest h further (the smallest
+    // of the global leaves' maximum h): the halos stay sufficient while no particle has moved,
+    // or grown its h, by more than skin() / 2 since the sync (sim/sync_schedule.hpp).
+    static constexpr double kHaloSkinOverH = 0.5;
+    void use_skin(bool on) {
+        skin_on_ = on;
+    }
+    T skin() const {
+        return skin_;
     }
 
     // Sends the fields carrying `roles` from owners to the halo copies.
@@ -166,7 +189,7 @@ class Domain {
     }
     // --balance cost: the last sync's summed cost per leaf of assignment() (else empty).
     const std::vector<double>& leaf_costs() const {
-        return costs_;
+        return counts_.cost;
     }
     const GlobalTree& global_tree() const {
         return tree_;
@@ -222,39 +245,12 @@ class Domain {
         return leaf;
     }
 
-    // The one hot-path collective of the sync: particle count (sum) and maximum h (max) per leaf,
-    // the vote, and with `cost` each leaf's summed cost (kept in costs_; else costs_ is empty).
-    std::vector<std::uint64_t> global_counts(const ParticleSet<T>& ps,
-                                             const std::vector<std::uint32_t>& leaf,
-                                             bool local_vote = false, bool* any_vote = nullptr,
-                                             const float* cost = nullptr) {
-        const std::size_t nl = tree_.num_leaves();
-        std::vector<SumMax> stat(cost ? 2 * nl + 1 : nl + 1);
-        stat[nl].max = local_vote ? 1.0 : 0.0;
-        const T* h = ps.data(Field::h);
-        for (std::size_t i = 0; i < leaf.size(); ++i) {
-            stat[leaf[i]].sum += 1.0;
-            stat[leaf[i]].max = std::max(stat[leaf[i]].max, double(h[i]));
-            if (cost) stat[nl + 1 + leaf[i]].sum += double(cost[i]);
-        }
-        coll_.allreduce_sum_max(stat);
-        if (any_vote) *any_vote = stat[nl].max > 0;
-        costs_.resize(cost ? nl : 0);
-        for (std::size_t l = 0; l < costs_.size(); ++l) costs_[l] = stat[nl + 1 + l].sum;
-        std::vector<std::uint64_t> counts(nl);
-        leaf_hmax_.resize(nl);
-        for (std::size_t l = 0; l < nl; ++l) {
-            counts[l] = std::uint64_t(stat[l].sum);
-            leaf_hmax_[l] = stat[l].sum > 0 ? T(stat[l].max) : T(0);
-        }
-        return counts;
-    }
-
     void discover_halos(ParticleSet<T>& ps, const Box<T>& box) {
         plan_ = HaloPlan{};
         halo_tree_.build(nullptr, 0, leaf_size_);
+        skin_ = skin_on_ ? T(kHaloSkinOverH) * counts_.smallest_hmax() : T(0); // one rank too
         if (coll_.size() == 1) return;
-        index_.build(tree_, leaf_hmax_, asg_, box, curve_);
+        index_.build(tree_, counts_.hmax, asg_, box, curve_, skin_);
         plan_.partners = halo_partners(index_, asg_, coll_.rank(), box);
         plan_halo_sends(plan_, index_, local_tree_, ps.data(Field::x), ps.data(Field::y),
                         ps.data(Field::z), ps.data(Field::h), coll_.rank(), box);
@@ -282,8 +278,9 @@ class Domain {
     CurveKind curve_;
     GlobalTree tree_;
     Assignment asg_;
-    std::vector<T> leaf_hmax_;
     LeafIndex<T> index_;
+    bool skin_on_ = false;
+    T skin_ = 0;
     HaloPlan plan_;
     std::vector<PostedHalos> spare_; // buffers of finished halo exchanges
     std::vector<std::uint8_t> sent_; // per owned particle: in some partner's send list
@@ -292,8 +289,7 @@ class Domain {
     // Between count_particles() and distribute(): keys, global leaf and leaf counts.
     std::vector<std::uint64_t> keys_;
     std::vector<std::uint32_t> leaf_;
-    std::vector<std::uint64_t> counts_;
-    std::vector<double> costs_; // per leaf, with --balance cost
+    LeafCounts<T> counts_;
 };
 
 } // namespace exasph

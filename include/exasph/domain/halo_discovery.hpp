@@ -16,13 +16,16 @@ namespace exasph {
 inline constexpr double kHaloSlack = 1e-6;
 
 // Spatial index over the global leaves: their cells as boxes, their maximum h, their owners, and
-// an octree over them for range queries. Identical on every rank.
+// an octree over them for range queries. Identical on every rank. Every reach test adds `skin`
+// (a length; --sync-every): halos found so stay sufficient while no particle has moved, or grown
+// its h, by more than skin / 2 (Domain::skin()).
 template <class T>
 class LeafIndex {
   public:
     void build(const GlobalTree& gt, const std::vector<T>& leaf_hmax, const Assignment& asg,
-               const Box<T>& box, CurveKind curve) {
+               const Box<T>& box, CurveKind curve, T skin = 0) {
         const std::size_t n = gt.num_leaves();
+        skin_ = skin;
         for (int d = 0; d < 3; ++d) {
             lo_[d].resize(n);
             hi_[d].resize(n);
@@ -59,7 +62,7 @@ class LeafIndex {
     }
 
     // Calls visit(leaf) for every leaf not owned by `me` whose cell lies within reach of the box
-    // [qlo, qhi] (a point when qlo == qhi): squared distance below (2 max(qh, hmax_leaf))^2.
+    // [qlo, qhi] (a point when qlo == qhi): distance below 2 max(qh, hmax_leaf) + skin.
     template <class F>
     void query(const T qlo[3], const T qhi[3], T qh, int me, const Box<T>& box, F&& visit) const {
         const auto& nodes = tree_.nodes();
@@ -71,7 +74,7 @@ class LeafIndex {
             std::uint32_t k = stack[--top];
             const auto& nd = nodes[k];
             if (node_owner_[k] == me) continue;
-            if (!within_reach(qlo, qhi, nd.lo, nd.hi, std::max(qh, nd.hmax), box)) continue;
+            if (!within_reach(qlo, qhi, nd.lo, nd.hi, std::max(qh, nd.hmax), skin_, box)) continue;
             if (nd.first_child >= 0) {
                 for (std::uint32_t c = 0; c < nd.num_children; ++c)
                     stack[top++] = std::uint32_t(nd.first_child) + c;
@@ -81,7 +84,7 @@ class LeafIndex {
                 const T llo[3] = {lo_[0][l], lo_[1][l], lo_[2][l]};
                 const T lhi[3] = {hi_[0][l], hi_[1][l], hi_[2][l]};
                 if (owner_[l] != me &&
-                    within_reach(qlo, qhi, llo, lhi, std::max(qh, hmax_[l]), box))
+                    within_reach(qlo, qhi, llo, lhi, std::max(qh, hmax_[l]), skin_, box))
                     visit(l);
             }
         }
@@ -99,13 +102,14 @@ class LeafIndex {
     // Symmetric in its two boxes (the minimum image of -d is exactly -d): both ranks of a pair
     // decide the same way whether they exchange halos.
     static bool within_reach(const T alo[3], const T ahi[3], const T blo[3], const T bhi[3], T h,
-                             const Box<T>& box) {
-        T reach = T(2) * h * T(1 + kHaloSlack);
+                             T skin, const Box<T>& box) {
+        T reach = (T(2) * h + skin) * T(1 + kHaloSlack);
         return box.box_distance2(alo, ahi, blo, bhi) < reach * reach;
     }
 
   private:
     std::vector<T> lo_[3], hi_[3], hmax_;
+    T skin_ = 0;
     std::vector<int> owner_;
     std::vector<int> node_owner_;
     Octree<T> tree_;

@@ -113,6 +113,7 @@ class RunDriver {
         std::signal(SIGTERM, detail::on_stop_signal);
         wall0_ = wall_seconds();
         step0_ = sim_->step_count();
+        collectives0_ = sim_->collective_count(), syncs0_ = sim_->domain_syncs();
         while (!done()) {
             if (detail::g_stop_signal) sim_->raise_flag(kStopRequested);
             if (root() && schedule_->clock_due(wall_seconds()))
@@ -128,12 +129,13 @@ class RunDriver {
                 const CommRecord& rec = sim_->domain().comm_record();
                 first_halo_ = {rec.halo_exposed_seconds(), rec.halo_behind_compute_seconds()};
             }
-            updates_ += sim_->diagnostics().work.active;
-            compute_.sum += sim_->diagnostics().work.compute_sum;
-            compute_.max += sim_->diagnostics().work.compute_max;
-            if (const std::string notice = sim_->take_sdc_notice(); root() && !notice.empty())
+            updates_ += sim_->diagnostics().work.active; // global steps: every step's the same
+            if (sim_->summed()) // --diagnostics-every: the steps that were summed stand for all
+                compute_.sum += sim_->diagnostics().work.compute_sum,
+                    compute_.max += sim_->diagnostics().work.compute_max, ++compute_steps_;
+            if (const std::string notice = sim_->safety().take_notice(); root() && !notice.empty())
                 out_ << "sdc watchdog: " << notice << "\n";
-            if (root()) {
+            if (root() && sim_->summed()) {
                 const double mean = (wall_seconds() - wall0_) / double(sim_->step_count() - step0_);
                 print_step(out_, *sim_, wall_seconds() - w0, mean, t_end_);
                 csv_->write(diagnostics_row(sim_->diagnostics(), sim_->phase_times(),
@@ -165,9 +167,16 @@ class RunDriver {
             write_comm_matrix(std::filesystem::path(cfg_.out_dir) / "comm_matrix.csv", rec, steps,
                               MPI_COMM_WORLD);
         if (root()) print_summary(out_, *sim_, steps, updates_, wall, output_wall_, nranks_, rss);
+        if (root() && (cfg_.sync_every > 1 || cfg_.diagnostics_every > 1))
+            out_ << strprintf("collectives: %.2f per step; domain syncs in %lld of %.0f steps, "
+                              "diagnostics summed in %.0f\n",
+                              double(sim_->collective_count() - collectives0_) / steps,
+                              (long long)(sim_->domain_syncs() - syncs0_), steps, compute_steps_);
         if (root() && nranks_ > 1)
             print_comm_summary(out_, comm, sim_->diagnostics(), steps,
-                               {compute_.sum / nranks_, compute_.max}, sim_->imbalance());
+                               {compute_.sum / nranks_ * steps / std::max(compute_steps_, 1.0),
+                                compute_.max * steps / std::max(compute_steps_, 1.0)},
+                               sim_->imbalance());
     }
 
   private:
@@ -193,9 +202,9 @@ class RunDriver {
     }
 
     void report_recovery() {
-        if (!sim_->sdc_detail().empty())
-            std::cerr << "exasph: rank " << rank_ << ": " << sim_->sdc_detail() << "\n";
-        if (root()) out_ << "silent data corruption: " << sim_->sdc_summary() << "\n";
+        if (!sim_->safety().detail().empty())
+            std::cerr << "exasph: rank " << rank_ << ": " << sim_->safety().detail() << "\n";
+        if (root()) out_ << "silent data corruption: " << sim_->safety().summary() << "\n";
     }
 
     // A step whose energy is not finite ends the run (naming the particle when a state field
@@ -230,6 +239,7 @@ class RunDriver {
         output_wall_ += cost;
         const double interval = schedule_->checkpoint_written(wall_seconds(), cost);
         last_checkpoint_ = sim_->step_count();
+        sim_->sync_next_step(); // as a restart from it does (--sync-every: bit for bit)
         if (root()) out_ << strprintf("checkpoint %s (%.3f s)\n", path.c_str(), cost);
         if (root() && interval > 0)
             out_ << strprintf("checkpoint interval: C = %.3f s, M = %.1f s -> every %.1f s of "
@@ -247,9 +257,10 @@ class RunDriver {
     double updates_ = 0;                     // particle updates since this process started stepping
     std::array<double, 2> first_halo_{0, 0}; // halo seconds after the first step (summary)
     SumMax compute_{0, 0}; // compute seconds per step, summed over ranks / of the slowest, summed
+    double compute_steps_ = 0; // the steps whose diagnostics were summed
     std::unique_ptr<CsvTable> csv_;
     std::unique_ptr<OutputSchedule> schedule_;
-    std::int64_t step0_ = 0, last_checkpoint_ = -1;
+    std::int64_t step0_ = 0, last_checkpoint_ = -1, collectives0_ = 0, syncs0_ = 0;
     bool warned_ngmax_ = false;
 };
 

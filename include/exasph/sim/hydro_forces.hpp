@@ -145,4 +145,14 @@ double hydro_forces(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, cons
     return courant;
 }
 
+// The step's neighbour lists (of the owned particles, or of the `active` ones) over the domain's
+// local and halo trees.
+template <class Lists, class D, class T>
+auto build_neighbour_lists(Lists& lists, const D& domain, const ParticleSet<T>& ps,
+                           const Box<T>& box, const std::uint8_t* active) {
+    SearchView<T> sv{ps.data(Field::x), ps.data(Field::y), ps.data(Field::z), ps.data(Field::h)};
+    return lists.build(domain.local_tree(), &domain.halo_tree(), sv, box,
+                       NeighbourCriterion::symmetric, std::uint32_t(domain.n_owned()), active);
+}
+
 } // namespace exasph

@@ -95,7 +95,9 @@ class SafetyNet {
     // seen by all through the diagnostics' flags), the conservation watchdog, then the
     // seal of the new state. Returns "" when the step stands, else the detector that refused
     // it (on every rank alike: both verdicts are global).
-    std::string verdict_after(const ParticleSet<T>& ps, std::size_t n, const Diagnostics& before,
+    // `before`: the diagnostics of the step before, or null when that step or this one was not
+    // summed (--diagnostics-every): the watchdog then has nothing to compare.
+    std::string verdict_after(const ParticleSet<T>& ps, std::size_t n, const Diagnostics* before,
                               const Diagnostics& now, double mass0, bool check_momentum,
                               bool changed_mid_step) {
         if (!on()) return "";
@@ -103,7 +105,7 @@ class SafetyNet {
         // Block time steps conserve energy and momentum only to their truncation error (forces
         // between particles on different rungs act at different times): no watchdog there.
         const std::string why =
-            press_scheme_ ? watchdog_.check(before, now, mass0, check_momentum) : "";
+            press_scheme_ && before ? watchdog_.check(*before, now, mass0, check_momentum) : "";
         if (!why.empty()) {
             if (rank_ == 0) detail_ = "watchdog: " + why;
             watchdog_fired_ = true; // on every rank: the diagnostics are global

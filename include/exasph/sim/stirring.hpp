@@ -159,12 +159,15 @@ class Stirring {
 };
 
 // The stirring of a run with target Mach number `mach` (none if 0): resumed from the
-// checkpoint, or new with the sound speed of the initial state's mean internal energy.
+// checkpoint, or new with the sound speed of the initial state's mean internal energy. The
+// CUDA backend (on_device) does not stir.
 template <class T>
 std::optional<Stirring> start_stirring(const Box<T>& box, const EosParams& eos,
                                        const Diagnostics& d, double mach, std::uint64_t seed,
-                                       const RestartState* restart) {
+                                       const RestartState* restart, bool on_device = false) {
     if (!(mach > 0)) return std::nullopt;
+    if (on_device) // its modes are in host memory
+        throw input_error("driven turbulence (--stir-mach) needs --backend cpu", true);
     if (!(box.periodic[0] && box.periodic[1] && box.periodic[2]) || eos.kind != EosKind::ideal_gas)
         throw input_error("--stir-mach: stirring needs a box periodic on every axis and the "
                           "ideal-gas EOS",

@@ -178,4 +178,10 @@ struct StoreResultKernel {
     }
 };
 
+// The `wrap` of the momentum-energy pass that stores each particle's limit in out (when given).
+template <class T>
+auto store_results_in(T* out) {
+    return [out](auto kern) { return StoreResultKernel<decltype(kern), T>{kern, out}; };
+}
+
 } // namespace exasph

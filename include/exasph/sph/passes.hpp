@@ -9,6 +9,7 @@
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/launch.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
+#include "exasph/sph/skin_kern.hpp"
 #include "exasph/sph/softening_correction_kern.hpp"
 #include "exasph/sph/stir_kern.hpp"
 #include "exasph/sph/update_kern.hpp"
@@ -198,6 +199,18 @@ double acceleration_time_step_min(ParticleSet<T>& ps, std::size_t n, double eps)
     return with_view(ps, [&](auto p) {
         return L::reduce_min(n,
                              AccelerationStepKernel<T, typename decltype(p)::narrow_type>{p, eps});
+    });
+}
+
+// --sync-every: each owned particle's use of the halo skin by the end of a coming step no longer
+// than dt (SkinUseKernel, added to used[i]); returns the largest.
+template <class L = DefaultLauncher, class T>
+double skin_use_max(ParticleSet<T>& ps, std::size_t n, float* used, double dt, double dt_m1,
+                    double ng0) {
+    if (n == 0) return 0.0;
+    return -with_view(ps, [&](auto p) {
+        using N = typename decltype(p)::narrow_type;
+        return L::reduce_min(n, SkinUseKernel<T, N>{p, used, T(dt), T(dt_m1), T(ng0)});
     });
 }
 

@@ -32,7 +32,11 @@ class PhaseTimer {
     }
     // Called with each phase as it ends (the fault injection of sim/fault.hpp uses it).
     void observe(std::function<void(std::size_t)> f) { observer_ = std::move(f); }
-    void begin_step() { step_.fill(0.0); }
+    // A new step: its phase times start at zero, and so does the clock.
+    void begin_step() {
+        step_.fill(0.0);
+        start();
+    }
     void end_step() {
         for (std::size_t i = 0; i < NumPhases; ++i) total_[i] += step_[i];
     }

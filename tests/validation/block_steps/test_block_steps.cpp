@@ -48,7 +48,7 @@ SedovOutcome run_sedov(int side, TimeStepping ts, bool limiter = true, double t_
     out.l1 = d.l1_rho;
     out.rho_max = d.rho_max;
     out.energy_error = std::abs(d.etot - e0) / std::abs(e0);
-    out.rollbacks = sim.recoveries();
+    out.rollbacks = sim.safety().recoveries();
     if (const auto b = sim.block_work_bound()) {
         out.bound = *b;
         std::printf("limits at the blocks' starts: %.1f global steps, %.1f updates per particle "

@@ -39,7 +39,8 @@ TEST(Evrard, N25GlassConservesEnergyAndBounces) {
         epot_min = std::min(epot_min, d.epot);
     }
     const auto& d = sim.diagnostics();
-    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary(); // a clean run raises no alarm
+    EXPECT_EQ(sim.safety().recoveries(), 0)
+        << sim.safety().summary(); // a clean run raises no alarm
     std::printf("Evrard -n 25 to t = %.2f in %lld steps: worst |E_tot - E_tot(0)| %.2e (%.2f %% of "
                 "|E_pot(0)|), E_kin max %.4f at t = %.3f, E_kin(t_end) %.4f, E_pot min %.4f\n",
                 d.time, (long long)sim.step_count(), worst_drift,

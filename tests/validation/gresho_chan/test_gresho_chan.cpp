@@ -46,7 +46,7 @@ TEST(GreshoChan, N40DefaultSchemeKeepsTheVortex) {
                     std::abs(d.angular_momentum[2] - d0.angular_momentum[2]) /
                         std::abs(d0.angular_momentum[2]));
     }
-    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary();
+    EXPECT_EQ(sim.safety().recoveries(), 0) << sim.safety().summary();
     const auto& d = sim.diagnostics();
     EXPECT_LE(l1_vphi(sim, gp), 0.05);
     EXPECT_LE(std::abs(d.etot - d0.etot), 1e-3 * std::abs(d0.etot));

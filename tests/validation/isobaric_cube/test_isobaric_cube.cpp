@@ -105,7 +105,7 @@ TEST(IsobaricCube, N20DefaultSchemeKeepsItsCornersAndFlatPressure) {
                     t, fill, s.dense_in_faces / s0.dense_in_faces, escaped, s.layer_blip,
                     s.particle_blip);
     }
-    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary();
+    EXPECT_EQ(sim.safety().recoveries(), 0) << sim.safety().summary();
     EXPECT_GE(fill, 0.8);
     EXPECT_LE(escaped, 0.15);
     EXPECT_LE(worst_blip, 0.1);

@@ -51,7 +51,7 @@ TEST(KelvinHelmholtz, N24DefaultSchemeGrowsTheMode) {
     const double dp = std::hypot(d.momentum[0] - d0.momentum[0], d.momentum[1] - d0.momentum[1]);
     std::printf("energy drift %.2e, momentum drift %.2e of sum m (|v| + c)\n",
                 std::abs(d.etot - d0.etot) / std::abs(d0.etot), dp / d0.momentum_abs);
-    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary();
+    EXPECT_EQ(sim.safety().recoveries(), 0) << sim.safety().summary();
     EXPECT_GE(a / a_start, 10.0);
     EXPECT_LE(std::abs(d.etot - d0.etot), 1e-3 * std::abs(d0.etot));
     EXPECT_LE(dp, 1e-10 * d0.momentum_abs);

@@ -23,7 +23,7 @@ TEST(Noh, N40DefaultSchemeReachesThePostShockState) {
     const double e0 = sim.diagnostics().etot;
     sim.set_end_time(t_end);
     while (sim.time() < t_end * (1 - 1e-12)) sim.step();
-    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary();
+    EXPECT_EQ(sim.safety().recoveries(), 0) << sim.safety().summary();
 
     // Density at the positions it was computed at (x_{n-1} after the update), at time t - dt.
     const auto& ps = sim.particles();

@@ -52,9 +52,9 @@ Outcome run(const Config& cfg, int steps, double t_end = -1) {
         o.etot = d.etot;
         for (int k = 0; k < 3; ++k) o.p[k] = d.momentum[k];
         o.pabs = d.momentum_abs;
-        o.recoveries = sim.recoveries();
-        o.detected_at = sim.sdc_detection_step();
-        o.summary = sim.sdc_summary();
+        o.recoveries = sim.safety().recoveries();
+        o.detected_at = sim.safety().detection_step();
+        o.summary = sim.safety().summary();
     } catch (const std::exception& e) {
         o.crashed = true;
         o.error = e.what();

@@ -23,7 +23,8 @@ TEST(Sedov, N50DefaultSchemeMatchesTheExactSolution) {
     const double e0 = sim.diagnostics().etot;
     sim.set_end_time(t_end);
     while (sim.time() < t_end * (1 - 1e-12)) sim.step();
-    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary(); // a clean run raises no alarm
+    EXPECT_EQ(sim.safety().recoveries(), 0)
+        << sim.safety().summary(); // a clean run raises no alarm
     const auto& d = sim.diagnostics();
 
     // Radially binned density at the positions it was computed at (x_{n-1} after the update).

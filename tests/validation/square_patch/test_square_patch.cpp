@@ -27,7 +27,8 @@ Outcome run_square_patch(int threads) {
     Simulation<double> sim(cfg, make_case(cfg));
     sim.set_end_time(0.02);
     while (sim.time() < 0.02) sim.step();
-    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary(); // a clean run raises no alarm
+    EXPECT_EQ(sim.safety().recoveries(), 0)
+        << sim.safety().summary(); // a clean run raises no alarm
     const auto& ps = sim.particles();
     Outcome o{sim.diagnostics().angular_momentum[2], sim.diagnostics().etot, 0, 0, true};
     for (std::size_t i = 0; i < ps.size(); ++i) {
@@ -94,7 +95,7 @@ TEST(SquarePatch, HalfSecondStaysSymmetricInZWithoutClumpingOrAlarm) {
         worst_lz = std::max(worst_lz, std::abs(sim.diagnostics().angular_momentum[2] / lz0 - 1));
         worst_e = std::max(worst_e, std::abs(sim.diagnostics().etot / e0 - 1));
     }
-    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary(); // acceptance 4's "no alarm"
+    EXPECT_EQ(sim.safety().recoveries(), 0) << sim.safety().summary(); // acceptance 4's "no alarm"
     const auto& ps = sim.particles();
     double vxy_max = 0;
     std::vector<double> vz(ps.size());

@@ -40,7 +40,7 @@ TEST(Turbulence, N16StirringReachesMachPointThree) {
         const double m = mach_rms(sim.diagnostics(), gamma), dt = sim.diagnostics().dt;
         sum += m * dt, weight += dt, lo = std::min(lo, m), hi = std::max(hi, m);
     }
-    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary();
+    EXPECT_EQ(sim.safety().recoveries(), 0) << sim.safety().summary();
     const auto& d = sim.diagnostics();
     const double mean = sum / weight, books = std::abs(d.etot - d.e_stir - e0) / d.e_stir;
     std::printf("turbulence -n 16 to t = %.1f: Mach_rms mean %.3f over t >= %.1f (min %.3f, max "

@@ -61,7 +61,7 @@ TEST(WindCloud, N12DefaultSchemeDestroysTheCloud) {
     }
     const auto d = sim.diagnostics();
     std::printf("energy drift %.2e\n", std::abs(d.etot - d0.etot) / std::abs(d0.etot));
-    EXPECT_EQ(sim.recoveries(), 0) << sim.sdc_summary();
+    EXPECT_EQ(sim.safety().recoveries(), 0) << sim.safety().summary();
     EXPECT_GT(below_half_at, 0.0);
     EXPECT_LT(below_half_at, 4.0);
     EXPECT_LE(fraction, 0.1);
