@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "exasph/util/mpi.hpp"
@@ -32,6 +33,16 @@ std::vector<ParticleState> owned_state(const Sim& sim) {
                   ps[Field::ax][i], ps[Field::ay][i],
                   ps[Field::az][i], gravity ? ps[Field::phi][i] : 0.0};
     return out;
+}
+
+// This rank and the rank count of MPI_COMM_WORLD; the distributed runs of the tests use one
+// OpenMP thread per rank.
+inline std::pair<int, int> one_thread_per_rank() {
+    int rank = 0, nranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+    omp_set_num_threads(1);
+    return {rank, nranks};
 }
 
 // The state after `steps` steps of a one-rank run (rank 0, MPI_COMM_SELF, `threads` threads).

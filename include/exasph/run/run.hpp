@@ -130,9 +130,11 @@ class RunDriver {
                 first_halo_ = {rec.halo_exposed_seconds(), rec.halo_behind_compute_seconds()};
             }
             updates_ += sim_->diagnostics().work.active; // global steps: every step's the same
-            if (sim_->summed()) // --diagnostics-every: the steps that were summed stand for all
-                compute_.sum += sim_->diagnostics().work.compute_sum,
-                    compute_.max += sim_->diagnostics().work.compute_max, ++compute_steps_;
+            if (sim_->summed()) { // --diagnostics-every: the summed steps stand for all
+                compute_.sum += sim_->diagnostics().work.compute_sum;
+                compute_.max += sim_->diagnostics().work.compute_max;
+                ++compute_steps_;
+            }
             if (const std::string notice = sim_->safety().take_notice(); root() && !notice.empty())
                 out_ << "sdc watchdog: " << notice << "\n";
             if (root() && sim_->summed()) {

@@ -40,10 +40,7 @@ TEST_P(MpiCases, MatchOneRank) {
     cfg.lattice = true; // the decomposition is under test, not the glass cache
     const int steps = 15;
     OneRankReference ref = one_rank_reference(cfg, steps, 1);
-    int rank = 0, nranks = 1;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
-    omp_set_num_threads(1);
+    const auto [rank, nranks] = one_thread_per_rank();
     Simulation<double> sim(cfg, make_case(cfg));
     for (int s = 0; s < steps; ++s) sim.step();
     auto all = allgather(owned_state(sim), MPI_COMM_WORLD);

@@ -24,10 +24,7 @@ TEST_P(MpiGpuHost, MatchesTheOneRankCpuPath) {
     cfg.lattice = true;
     const int steps = 15;
     const OneRankReference ref = one_rank_reference(cfg, steps, 1);
-    int rank = 0, nranks = 1;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
-    omp_set_num_threads(1);
+    const auto [rank, nranks] = one_thread_per_rank();
     Simulation<double, GpuHostLauncher> sim(cfg, make_case(cfg));
     for (int s = 0; s < steps; ++s) sim.step();
     auto all = allgather(owned_state(sim), MPI_COMM_WORLD);

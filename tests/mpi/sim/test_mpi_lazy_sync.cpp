@@ -60,7 +60,7 @@ LazyRun run_lazy(Config cfg) {
 }
 
 void expect_lazy_equals_every_step(Config cfg) {
-    omp_set_num_threads(1);
+    const auto [rank, nranks] = one_thread_per_rank();
     cfg.steps = kSteps; // the last step sums the diagnostics
     Simulation<double> every(cfg, make_case(cfg));
     for (int s = 0; s < kSteps; ++s) every.step();
@@ -69,9 +69,6 @@ void expect_lazy_equals_every_step(Config cfg) {
     std::vector<ParticleState> all;
     for (const auto& [id, st] : lazy.end.state) all.push_back(st);
     const Differences diff = compare_to_reference(all, ref);
-    int rank = 0, nranks = 1;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
     if (rank == 0)
         std::printf("%s, %d ranks: %d steps, %d syncs, %d summed, %d with one collective; "
                     "worst differences rho %.2e v %.2e u %.2e, E_tot %.3e\n",

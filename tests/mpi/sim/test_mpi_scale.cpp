@@ -51,10 +51,7 @@ TEST(MpiScale, CostCutSpreadsEachSubStepsWorkAndKeepsTheResults) {
     const Config cfg = sedov_blocks();
     const int steps = 100;
     OneRankReference ref = one_rank_reference(cfg, steps, 1);
-    int rank = 0, nranks = 1;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
-    omp_set_num_threads(1);
+    const auto [rank, nranks] = one_thread_per_rank();
     Simulation<double> sim(cfg, make_case(cfg));
     double by_cost = 0, by_count = 0, worst_count = 1;
     int partial = 0; // sub-steps with inactive particles

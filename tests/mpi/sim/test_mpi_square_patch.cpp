@@ -31,15 +31,6 @@ Config patch_config() {
     return cfg;
 }
 
-// This rank and the rank count; the distributed runs use one OpenMP thread per rank.
-std::pair<int, int> one_thread_per_rank() {
-    int rank = 0, nranks = 1;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
-    omp_set_num_threads(1);
-    return {rank, nranks};
-}
-
 } // namespace
 
 TEST(MpiSquarePatch, MatchesOneRankAndKeepsOwnershipBalanceAndCollectives) {
