@@ -35,15 +35,15 @@ namespace exasph {
 // particle's own Courant limit with block time steps (and reduces it with global steps).
 #define EXASPH_CUDA_MOMENTUM_AS(...)                                                               \
     EXASPH_CUDA_NEIGHBOURS(StoreResultKernel<MomentumEnergyKernel<__VA_ARGS__>, double>)
+#define EXASPH_CUDA_MOMENTUM_TERMS(TERMS, N)                                                       \
+    EXASPH_CUDA_MOMENTUM_AS(double, PairTerms::TERMS, false, false, N)                             \
+    EXASPH_CUDA_MOMENTUM_AS(double, PairTerms::TERMS, false, true, N)                              \
+    EXASPH_CUDA_MOMENTUM_AS(double, PairTerms::TERMS, true, false, N)                              \
+    EXASPH_CUDA_MOMENTUM_AS(double, PairTerms::TERMS, true, true, N)
 #define EXASPH_CUDA_MOMENTUM(N)                                                                    \
-    EXASPH_CUDA_MOMENTUM_AS(double, false, false, false, N)                                        \
-    EXASPH_CUDA_MOMENTUM_AS(double, false, false, true, N)                                         \
-    EXASPH_CUDA_MOMENTUM_AS(double, false, true, false, N)                                         \
-    EXASPH_CUDA_MOMENTUM_AS(double, false, true, true, N)                                          \
-    EXASPH_CUDA_MOMENTUM_AS(double, true, false, false, N)                                         \
-    EXASPH_CUDA_MOMENTUM_AS(double, true, false, true, N)                                          \
-    EXASPH_CUDA_MOMENTUM_AS(double, true, true, false, N)                                          \
-    EXASPH_CUDA_MOMENTUM_AS(double, true, true, true, N)
+    EXASPH_CUDA_MOMENTUM_TERMS(plain, N)                                                           \
+    EXASPH_CUDA_MOMENTUM_TERMS(limited, N)                                                         \
+    EXASPH_CUDA_MOMENTUM_TERMS(any, N)
 
 #define EXASPH_CUDA_PASSES(N)                                                                      \
     EXASPH_CUDA_NEIGHBOURS(DensityEosKernel<double, N>)                                            \

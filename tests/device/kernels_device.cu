@@ -44,10 +44,15 @@ void instantiate(ParticleView<T> p, Box<T> box, KernelView<T> kv, const std::uin
                               out);
     neighbour_pass<<<1, 32>>>(IadKernel<T>{p, box, kv, true}, lists, 8, 32, out);
     Dissipation<T> d;
-    neighbour_pass<<<1, 32>>>(MomentumEnergyKernel<T, true, true, true>{p, box, kv, d, T(0.2)},
-                              lists, 8, 32, out);
-    neighbour_pass<<<1, 32>>>(MomentumEnergyKernel<T, false, false, false>{p, box, kv, d, T(0.2)},
-                              lists, 8, 32, out);
+    using Terms = PairTerms;
+    neighbour_pass<<<1, 32>>>(
+        MomentumEnergyKernel<T, Terms::any, true, true>{p, box, kv, d, T(0.2)}, lists, 8, 32, out);
+    neighbour_pass<<<1, 32>>>(
+        MomentumEnergyKernel<T, Terms::limited, true, true>{p, box, kv, d, T(0.2)}, lists, 8, 32,
+        out);
+    neighbour_pass<<<1, 32>>>(
+        MomentumEnergyKernel<T, Terms::plain, false, false>{p, box, kv, d, T(0.2)}, lists, 8, 32,
+        out);
     particle_pass<<<1, 32>>>(StateUpdateKernel<T>{p, box, T(1), T(1)}, 32, out);
     particle_pass<<<1, 32>>>(SmoothingLengthKernel<T>{p, T(100)}, 32, out);
     particle_pass<<<1, 32>>>(ViscosityKernel<T>{p, T(1), T(0.05), T(1), T(0.2)}, 32, out);

@@ -6,6 +6,7 @@
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/sph/iad_kern.hpp"
+#include "exasph/sph/pair_dissipation.hpp"
 #include "exasph/sph/tensile_stress.hpp"
 #include "exasph/sph/timestep.hpp"
 #include "exasph/tree/neighbour_span.hpp"
@@ -21,90 +22,6 @@ struct MomentumEnergyResult {
     T divv; // sum_b V_b (v_b - v_a) . A_ab(h_a)
 };
 
-// Artificial dissipation beyond SPEC 6's viscosity.
-template <class T>
-struct Dissipation {
-    T alpha_u = T(0);          // artificial conductivity coefficient (0: off)
-    bool reconstruct = false;  // viscosity from velocities reconstructed to the pair midpoint
-    T eta_crit = T(0);         // pairs closer than eta_crit max(h_a, h_b) fade the reconstruction
-    T alpha = T(1);            // the AV coefficient where particles carry none (no AV switch)
-    T tensile = T(0);          // artificial stress coefficient eps where P < 0 (0: off)
-    T tensile_positive = T(0); // the stress's eps where P > 0 (0: off)
-    bool central = false;      // viscosity along the pair axis (--torque-free)
-    int tensile_exponent = 4;  // n of the stress's f_ab^n
-    // --torque-free with the stress: its own matrix M (Field::s11..s33, tensile_stress.hpp)
-    bool stress_matrix = false;
-
-    static Dissipation of(double alpha, double alpha_u, bool reconstruct, double ng0,
-                          double tensile = 0, bool central = false, int tensile_exponent = 4,
-                          double tensile_positive = 0) {
-        // eta_crit: about the mean particle spacing in units of h, (4/3 pi (2h)^3 / ng0)^(1/3) / h.
-        Dissipation d;
-        d.alpha_u = T(alpha_u);
-        d.reconstruct = reconstruct;
-        d.eta_crit = T(std::cbrt(32.0 * std::numbers::pi / (3.0 * ng0)));
-        d.alpha = T(alpha);
-        d.tensile = T(tensile);
-        d.tensile_positive = T(tensile_positive);
-        d.central = central;
-        d.tensile_exponent = tensile_exponent;
-        d.stress_matrix = central && d.stress();
-        return d;
-    }
-    EXASPH_HD bool stress() const { return tensile > T(0) || tensile_positive > T(0); }
-    bool any_extra() const { return reconstruct || alpha_u > T(0) || stress() || central; }
-    // 1 / W(dp) of the stress's f_ab (0 without the stress).
-    EXASPH_HD T stress_inv_w0(const KernelView<T>& k) const {
-        return stress() ? T(1) / k.value(eta_crit) : T(0);
-    }
-};
-
-// v_ab with both velocities reconstructed linearly to the pair midpoint (Rosswog 2015):
-//   v~_a = v_a + Phi/2 G_a d,  v~_b = v_b - Phi/2 G_b d,  d = x_b - x_a,
-// G the IAD velocity gradients. The van Leer limiter Phi = 4 q_a q_b / (q_a + q_b)^2 (0 unless
-// q_a = d.G_a.d and q_b = d.G_b.d agree in sign) is 1 where the flow is linear across the pair,
-// so smooth compression (a uniformly converging inflow) is not dissipated, and falls to 0 where
-// the slopes disagree, as at a shock. Pairs closer than eta_crit (about the mean particle
-// spacing in units of h) lose the reconstruction smoothly, keeping the viscosity's barrier
-// against interpenetration. Phi and the midpoint are symmetric in a and b, so Pi_ab stays
-// symmetric and momentum and energy stay conserved. Only v~_ab . d enters Pi_ab, and
-// (G d) . d = d.S.d with S the strain rate (G's symmetric part): the six components of S
-// (strain_rate_field) are all the pair reads, and
-//   v~_ab . r_ab = v_ab . r_ab - Phi/2 (q_a + q_b),  r_ab = -d.
-inline constexpr double kReconstructedApproachCap = 2.0;
-
-// d.S.d for the strain rate S = (S_11, S_12, S_13, S_22, S_23, S_33).
-template <class T>
-EXASPH_HD EXASPH_INLINE T strain_along(const T (&e)[6], T dx, T dy, T dz) {
-    return dx * (e[0] * dx + T(2) * (e[1] * dy + e[2] * dz)) + dy * (e[3] * dy + T(2) * e[4] * dz) +
-           dz * e[5] * dz;
-}
-
-template <class T>
-EXASPH_HD EXASPH_INLINE T reconstructed_approach(T vr, T dx, T dy, T dz, const T (&ea)[6],
-                                                 const T (&eb)[6], T eta, T eta_crit) {
-    const T qa = strain_along(ea, dx, dy, dz);
-    const T qb = strain_along(eb, dx, dy, dz);
-    T phi = qa * qb > T(0) ? T(4) * qa * qb / ((qa + qb) * (qa + qb)) : T(0);
-    if (eta < eta_crit) {
-        T e = (eta - eta_crit) / T(0.2);
-        phi *= std::exp(-e * e);
-    }
-    return vr - T(0.5) * phi * (qa + qb);
-}
-
-// The component of g along the pair axis d, (g . d) d / r^2: a pair force along it is central
-// (exerts no torque), which IAD's C_a d W is not.
-template <class T>
-struct Vec3 {
-    T x, y, z;
-};
-template <class T>
-EXASPH_HD EXASPH_INLINE Vec3<T> along_axis(T gx, T gy, T gz, T dx, T dy, T dz, T inv_r2) {
-    const T s = (gx * dx + gy * dy + gz * dz) * inv_r2;
-    return {s * dx, s * dy, s * dz};
-}
-
 // SPEC 6 with IAD gradients, with a per-particle alpha (SPEC 6's "later switch") (SPEC 5), over a
 // symmetric neighbour list (r_ab < 2 max(h_a, h_b)), which makes every pair's contribution appear
 // with opposite sign in b's sum: momentum is conserved to round-off and energy up to
@@ -115,16 +32,18 @@ EXASPH_HD EXASPH_INLINE Vec3<T> along_axis(T gx, T gy, T gz, T dx, T dy, T dz, T
 //             -1/2 sum_b m_b Pi_ab [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
 //   du_a/dt = P_a/(Om_a rho_a^2) sum_b m_b v_ab . A_ab(h_a)
 //             +1/4 sum_b m_b Pi_ab v_ab . [A_ab(h_a)/rho_a + A_ab(h_b)/rho_b]
-// kExtras: conductivity or the limiter may be on. kAlphaField: alpha per particle (the AV
+// kTerms: the options the loop carries (PairTerms). kAlphaField: alpha per particle (the AV
 // switch, which also wants the velocity divergence), else the constant diss.alpha (divv is
 // then not computed). kVolumeElements: X and k are fields; without them X = m is read once per
 // neighbour (not twice through an aliased pointer) and X_a / m_a = 1. P/(Om k^2) comes
 // precomputed per particle (Field::pgrad, set by the density pass).
-template <class T, bool kExtras = true, bool kAlphaField = true, bool kVolumeElements = true,
-          class N>
+template <class T, PairTerms kTerms = PairTerms::any, bool kAlphaField = true,
+          bool kVolumeElements = true, class N>
 EXASPH_HD MomentumEnergyResult<T>
 momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>& p,
                      const Box<T>& box, const KernelView<T>& k, const Dissipation<T>& diss = {}) {
+    constexpr bool kExtras = kTerms != PairTerms::plain;
+    constexpr bool kLimited = kTerms == PairTerms::limited; // the limiter on, no stress
     const T alpha_u = diss.alpha_u;
     const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
@@ -148,18 +67,23 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
     // where P > 0, stress_coefficient), f_ab = W(r)/W(dp) with dp the mean particle spacing
     // (eta_crit h), so close pairs repel. R enters both members' terms as P does, so momentum
     // stays conserved, and du/dt takes R's work.
-    const T eps_ts = kExtras ? diss.tensile : T(0);
-    const T eps_pos = kExtras ? diss.tensile_positive : T(0);
+    constexpr bool kAny = kTerms == PairTerms::any;
+    const T eps_ts = kAny ? diss.tensile : T(0);
+    const T eps_pos = kAny ? diss.tensile_positive : T(0);
     const T ra = stress_coefficient(pa, eps_ts, eps_pos);
-    const T inv_w0 = kExtras ? diss.stress_inv_w0(k) : T(0);
+    const T inv_w0 = kAny ? diss.stress_inv_w0(k) : T(0);
     const int n_ts = diss.tensile_exponent;
-    const bool own_stress_matrix = kExtras && diss.stress_matrix;
-    const bool stress_on = kExtras && diss.stress(); // the schemes without it skip its pair work
+    const bool own_stress_matrix = kAny && diss.stress_matrix;
+    const bool stress_on = kAny && diss.stress(); // the schemes without it skip its pair work
     T du_ts = 0;
     const T* u = p[Field::u];
     T ea[6] = {0, 0, 0, 0, 0, 0}; // the strain rate S_a, with the limiter
-    if (diss.reconstruct)
-        for (int e = 0; e < 6; ++e) ea[e] = p.narrow(strain_rate_field(e))[a];
+    const N* strain[6] = {};      // its fields
+    if (kExtras && diss.reconstruct)
+        for (int e = 0; e < 6; ++e) {
+            strain[e] = p.narrow(strain_rate_field(e));
+            ea[e] = strain[e][a];
+        }
     const PeriodicImage<T> image(box);
 #pragma omp simd reduction(+ : ax, ay, az, du_p, du_av, divv, du_cond, du_ts) \
     reduction(max : vsig_max)
@@ -191,19 +115,14 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
         // alpha_ab = (alpha_a + alpha_b)/2 keeps Pi_ab symmetric (= alpha for a constant alpha)
         T alpha_ab = kAlphaField ? T(0.5) * (alpha[a] + alpha[b]) : diss.alpha;
         T pi_ab = vr < T(0) ? T(-0.5) * alpha_ab * vsig * w_ab : T(0);
-        if (kExtras && diss.reconstruct && vr < T(0)) {
-            // Only pairs that really approach are dissipated: the heating Pi_ab v_ab . A stays
-            // positive.
+        // With kLimited every pair takes this branch-free (limited_viscosity is 0 unless
+        // vr < 0), so that the loop vectorises; with kAny only the approaching ones.
+        if (kLimited || (kAny && diss.reconstruct && vr < T(0))) {
             T eb[6];
-            for (int e = 0; e < 6; ++e) eb[e] = p.narrow(strain_rate_field(e))[b];
-            T eta = va < vb ? va : vb; // r / max(h_a, h_b)
-            T wt = reconstructed_approach(vr, dx, dy, dz, ea, eb, eta, diss.eta_crit) * inv_r;
-            // The reconstructed approach is at most kReconstructedApproachCap times the pair's
-            // own, so Pi_ab goes to 0 continuously as a pair stops approaching (a jump there
-            // turned the round-off of the summation order into 1e-7 force differences between
-            // rank counts); beyond 1, noisy gradients still damp velocity noise (Gresho-Chan).
-            wt = wt > kReconstructedApproachCap * w_ab ? wt : kReconstructedApproachCap * w_ab;
-            pi_ab = wt < T(0) ? T(-0.5) * alpha_ab * (T(c[a]) + T(c[b]) - T(3) * wt) * wt : T(0);
+            for (int e = 0; e < 6; ++e) eb[e] = strain[e][b];
+            const T eta = va < vb ? va : vb; // r / max(h_a, h_b)
+            pi_ab = limited_viscosity(vr, w_ab, inv_r, dx, dy, dz, ea, eb, eta, diss, alpha_ab,
+                                      T(c[a]) + T(c[b]));
         }
         T pb = T(pgrad[b]) * xa_ma;
         T inv_rho_b = T(1) / T(rho[b]);
@@ -211,7 +130,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
         T gx = aax * inv_rho_a + abx * inv_rho_b; // A(h_a)/rho_a + A(h_b)/rho_b
         T gy = aay * inv_rho_a + aby * inv_rho_b;
         T gz = aaz * inv_rho_a + abz * inv_rho_b;
-        if (kExtras && diss.central) { // --torque-free: viscosity along the pair axis
+        if (kAny && diss.central) { // --torque-free: viscosity along the pair axis
             const Vec3<T> g = along_axis(gx, gy, gz, dx, dy, dz, inv_r * inv_r);
             gx = g.x, gy = g.y, gz = g.z;
         }
@@ -250,10 +169,12 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
             divv -= xb / kb * v_dot_a;
         }
         du_av += mb * pi_ab * (vabx * gx + vaby * gy + vabz * gz);
-        if (kExtras && alpha_u > T(0)) {
+        if (kLimited || (kExtras && alpha_u > T(0))) {
             // Artificial conductivity (Price 2008): heat flows from hot to cold along the pair,
             // with signal speed sqrt(|P_a - P_b| / rho_ab) and |grad W| ~ A_bar . d / r, both
-            // symmetric in a and b, so sum_a m_a du_a/dt stays zero.
+            // symmetric in a and b, so sum_a m_a du_a/dt stays zero. (With kLimited on every
+            // pair, times alpha_u = 0 where it is off: a branch on alpha_u keeps GCC from
+            // vectorising the loop.)
             T inv_rho_bar = T(2) / (rho_a + T(rho[b]));
             T vu = std::sqrt(std::abs(T(pr[a]) - T(pr[b])) * inv_rho_bar);
             T fbar = T(0.5) * ((aax + abx) * dx + (aay + aby) * dy + (aaz + abz) * dz) * inv_r;
@@ -266,7 +187,7 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
 // The momentum-energy pass of one particle: a, du/dt (and div v for the AV switch) stored;
 // returns the particle's Courant time step (SPEC 7) for the factor `courant`, so that signal
 // velocities are used where they are computed, not stored.
-template <class T, bool kExtras, bool kAlphaField, bool kVolumeElements, class N = float>
+template <class T, PairTerms kTerms, bool kAlphaField, bool kVolumeElements, class N = float>
 struct MomentumEnergyKernel {
     ParticleView<T, N> p;
     Box<T> box;
@@ -276,7 +197,7 @@ struct MomentumEnergyKernel {
 
     EXASPH_HD T operator()(std::uint32_t i, NeighbourSpan nb) const {
         auto r =
-            momentum_energy_kern<T, kExtras, kAlphaField, kVolumeElements>(i, nb, p, box, k, diss);
+            momentum_energy_kern<T, kTerms, kAlphaField, kVolumeElements>(i, nb, p, box, k, diss);
         p[Field::ax][i] = r.ax;
         p[Field::ay][i] = r.ay;
         p[Field::az][i] = r.az;

@@ -93,20 +93,28 @@ double compute_momentum_energy(ParticleSet<T>& ps, const Lists& nl, const Box<T>
                                T courant = T(0.2), Wrap wrap = {}) {
     return with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
-        auto pass = [&](auto extras, auto alpha, auto ve) {
+        auto pass = [&](auto terms, auto alpha, auto ve) {
             return L::for_each_neighbourhood(
-                nl, wrap(MomentumEnergyKernel<T, extras(), alpha(), ve(), N>{p, box, k, diss,
-                                                                             courant}));
+                nl,
+                wrap(MomentumEnergyKernel<T, terms(), alpha(), ve(), N>{p, box, k, diss, courant}));
         };
-        auto with_ve = [&](auto extras, auto alpha) {
-            return p[Field::kx] ? pass(extras, alpha, std::true_type{})
-                                : pass(extras, alpha, std::false_type{});
+        auto with_ve = [&](auto terms, auto alpha) {
+            return p[Field::kx] ? pass(terms, alpha, std::true_type{})
+                                : pass(terms, alpha, std::false_type{});
         };
-        auto with_alpha = [&](auto extras) {
-            return p[Field::alpha] ? with_ve(extras, std::true_type{})
-                                   : with_ve(extras, std::false_type{});
+        auto with_alpha = [&](auto terms) {
+            return p[Field::alpha] ? with_ve(terms, std::true_type{})
+                                   : with_ve(terms, std::false_type{});
         };
-        return diss.any_extra() ? with_alpha(std::true_type{}) : with_alpha(std::false_type{});
+        using Terms = PairTerms;
+        switch (diss.terms()) {
+        case Terms::plain:
+            return with_alpha(std::integral_constant<Terms, Terms::plain>{});
+        case Terms::limited:
+            return with_alpha(std::integral_constant<Terms, Terms::limited>{});
+        default:
+            return with_alpha(std::integral_constant<Terms, Terms::any>{});
+        }
     });
 }
 

@@ -1,4 +1,6 @@
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -9,6 +11,7 @@
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/util/block_sum.hpp"
 #include "exasph/util/box.hpp"
+#include "exasph/util/branch_free_exp.hpp"
 
 using namespace exasph;
 
@@ -86,4 +89,20 @@ TEST(BlockSum, IndependentOfThreadCount) {
     double s2 = block_sum<1>(n, f)[0];
     EXPECT_EQ(s1, s2);
     EXPECT_NEAR(s1, std::log(double(n)) + 0.5772156649, 1e-4);
+}
+
+// The limiter's fade exp(-e^2) uses it inside a vectorised pair loop: it must be std::exp to
+// within an ulp where the loop reads it, give e^-700 below that, and pass a NaN on.
+TEST(BranchFreeExp, WithinOneUlpOfStdExpForNonPositiveArguments) {
+    double worst = 0;
+    for (int i = 0; i <= 400000; ++i) {
+        const double x = -40.0 * i / 400000.0 - 1e-7 * (i % 7);
+        const double exact = std::exp(x);
+        const double ulp = std::nextafter(exact, 2 * exact) - exact;
+        worst = std::max(worst, std::abs(exp_nonpositive(x) - exact) / ulp);
+    }
+    EXPECT_LE(worst, 1.0);
+    EXPECT_EQ(exp_nonpositive(0.0), 1.0);
+    EXPECT_EQ(exp_nonpositive(-1e4), std::exp(-700.0));
+    EXPECT_TRUE(std::isnan(exp_nonpositive(std::numeric_limits<double>::quiet_NaN())));
 }
