@@ -115,9 +115,9 @@ momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>
         // alpha_ab = (alpha_a + alpha_b)/2 keeps Pi_ab symmetric (= alpha for a constant alpha)
         T alpha_ab = kAlphaField ? T(0.5) * (alpha[a] + alpha[b]) : diss.alpha;
         T pi_ab = vr < T(0) ? T(-0.5) * alpha_ab * vsig * w_ab : T(0);
-        // With kLimited every pair takes this branch-free (limited_viscosity is 0 unless
-        // vr < 0), so that the loop vectorises; with kAny only the approaching ones.
-        if (kLimited || (kAny && diss.reconstruct && vr < T(0))) {
+        // Every pair, without a branch (limited_viscosity is 0 unless the pair approaches):
+        // kLimited's loop then vectorises.
+        if (kLimited || (kAny && diss.reconstruct)) {
             T eb[6];
             for (int e = 0; e < 6; ++e) eb[e] = strain[e][b];
             const T eta = va < vb ? va : vb; // r / max(h_a, h_b)

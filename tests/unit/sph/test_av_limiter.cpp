@@ -100,8 +100,8 @@ TEST(AvLimiter, DisagreeingSlopesOrClosePairsKeepTheFullApproach) {
 }
 
 namespace {
-// Runs one momentum-energy instantiation over every particle and returns its a, du/dt and dt
-// per particle (ax, ay, az, du, dt interleaved).
+// Runs one momentum-energy instantiation over every particle and returns a and du/dt per
+// particle (ax, ay, az, du interleaved).
 template <PairTerms kTerms>
 std::vector<double> momentum_energy_with(ParticleSet<double>& ps, const NeighbourLists<double>& nl,
                                          const Box<double>& box, const Dissipation<double>& diss) {
