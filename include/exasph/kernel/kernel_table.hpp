@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "exasph/kernel/kernel_poly.hpp"
 #include "exasph/util/annotate.hpp"
 #include "exasph/util/field_memory.hpp"
 
@@ -16,6 +17,8 @@ struct KernelView {
     const T* dw; // dw/dv(v_i)
     T inv_dv;    // (kSize - 1) / 2
     int size;
+    KernelPoly<T> w_sq;     // w as a polynomial in v^2
+    KernelPoly<T> gradh_sq; // 3 w + v dw/dv (the grad-h sum's term, SPEC 3) in v^2
 
     // Branch-free, so that neighbour loops calling it vectorise: the index is clamped and the
     // value multiplied by 0 at and beyond v = 2 (a select there makes GCC move the table loads
@@ -70,9 +73,14 @@ class KernelTable {
             w_[i] = static_cast<T>(norm_ * shape.f(v, shape.param));
             dw_[i] = static_cast<T>(norm_ * shape.df(v, shape.param));
         }
+        w_sq_ = fit_kernel_poly<T>([&](double v) { return exact_value(v); });
+        gradh_sq_ = fit_kernel_poly<T>(
+            [&](double v) { return 3 * exact_value(v) + v * exact_derivative(v); });
     }
 
-    KernelView<T> view() const { return {w_.data(), dw_.data(), T(kSize - 1) / T(2), kSize}; }
+    KernelView<T> view() const {
+        return {w_.data(), dw_.data(), T(kSize - 1) / T(2), kSize, w_sq_, gradh_sq_};
+    }
     double normalisation() const { return norm_; }
     // Direct (non-tabulated) evaluation, for tests and set-up code.
     double exact_value(double v) const { return v >= 2 ? 0 : norm_ * shape_.f(v, shape_.param); }
@@ -84,6 +92,7 @@ class KernelTable {
     KernelShape shape_;
     double norm_ = 0;
     FieldArray<T> w_, dw_; // read by the kernels, on a device too
+    KernelPoly<T> w_sq_{}, gradh_sq_{};
 };
 
 } // namespace exasph

@@ -82,7 +82,8 @@ struct RungNeedKernel {
     ParticleView<T, N> p;
     int* need;
 
-    EXASPH_HD void operator()(std::uint32_t i, NeighbourSpan nb) const {
+    template <class Span>
+    EXASPH_HD void operator()(std::uint32_t i, Span nb) const {
         const int bound = int(p[Field::rung][i]) - 2;
         if (bound <= 0) return; // every rung is at least 0
         for (std::uint32_t k = 0; k < nb.count; ++k) atomic_max(need + nb[k], bound);
@@ -170,7 +171,8 @@ struct StoreResultKernel {
     T* out;
 
     // Without `out` (global steps) the result is reduced as usual.
-    EXASPH_HD double operator()(std::uint32_t i, NeighbourSpan nb) const {
+    template <class Span>
+    EXASPH_HD double operator()(std::uint32_t i, Span nb) const {
         const double r = double(k(i, nb));
         if (!out) return r;
         out[i] = T(r);

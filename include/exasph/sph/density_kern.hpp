@@ -21,19 +21,19 @@ struct DensityResult {
 // SPEC 3 with generalised volume elements (Hopkins 2013; Cabezon et al. 2017): every particle
 // carries a weight X (X = m gives standard SPH exactly), k_a = sum_b X_b W_ab(h_a) including
 // b = a, V_a = X_a / k_a, rho_a = m_a / V_a, and the grad-h term
-// Omega_a = 1 - 1/(3 k_a h_a^3) sum_b X_b (3 w(v) + v w'(v)).
-template <class T, class N>
-EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb,
-                                        const ParticleView<T, N>& p, const Box<T>& box,
-                                        const KernelView<T>& k) {
+// Omega_a = 1 - 1/(3 k_a h_a^3) sum_b X_b (3 w(v) + v w'(v)). Both terms come from the kernel's
+// polynomials in v^2 (KernelPoly): no square root and no table gathers per pair.
+template <class T, class N, class Span>
+EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
+                                        const Box<T>& box, const KernelView<T>& k) {
     const T* x = p[Field::x];
     const T* y = p[Field::y];
     const T* z = p[Field::z];
     // Standard SPH carries no X field: X = m.
     const T* xm = p[Field::xm] ? p[Field::xm] : p[Field::m];
     const T ha = p[Field::h][a];
-    const T inv_h = T(1) / ha;
-    const T w0 = k.value(T(0));
+    const T inv_h2 = T(1) / (ha * ha);
+    const T w0 = k.w_sq(T(0));
     double k_sum = xm[a] * w0; // w(v) sums, divided by h^3 at the end
     double dh_sum = xm[a] * T(3) * w0;
     T nc = 0; // counted in T: one type in the simd reductions (GCC rejects mixed ones)
@@ -47,13 +47,12 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, NeighbourSpan nb,
         T dy = image(y[b] - y[a], 1);
         T dz = image(z[b] - z[a], 2);
         T r2 = dx * dx + dy * dy + dz * dz;
-        T inside = T(r2 < T(4) * ha * ha);
+        T s = r2 * inv_h2; // v^2
+        T inside = T(s < T(4));
         nc += inside;
-        T v = std::sqrt(r2) * inv_h;
-        T w = k.value(v);
         T xb = xm[b] * inside;
-        k_sum += xb * w;
-        dh_sum += xb * (T(3) * w + v * k.derivative(v));
+        k_sum += xb * k.w_sq(s);
+        dh_sum += xb * k.gradh_sq(s);
     }
     T h3 = ha * ha * ha;
     T kx = static_cast<T>(k_sum) / h3;
@@ -75,7 +74,8 @@ struct DensityEosKernel {
     EosParams eos;
     bool capture_rho0 = false;
 
-    EXASPH_HD void operator()(std::uint32_t i, NeighbourSpan nb) const {
+    template <class Span>
+    EXASPH_HD void operator()(std::uint32_t i, Span nb) const {
         auto r = density_kern(i, nb, p, box, k);
         const N rho = N(r.rho); // N: float, or T with --double-precision (is_narrow)
         p.narrow(Field::rho)[i] = rho;

@@ -50,8 +50,8 @@ EXASPH_HD StrainRate<T> strain_rate(const VelocityGradient<T>& v) {
 // `own_k` (--torque-free): V_b = X_b / k_a, the weights of particle a's pressure term in the
 // momentum equation (X_b P_a/(Om_a k_a^2) C_a d W), so that sum_b X_b d x (C_a d) W vanishes with
 // C_a tau_a = I: the IAD pressure forces exert no net torque. Still exact for linear fields.
-template <class T, class K, class N>
-EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>& p,
+template <class T, class K, class N, class Span>
+EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
                                      const Box<T>& box, const KernelView<T>& k,
                                      VelocityGradient<T>* grad, const K* kx, bool own_k) {
     const T* x = p[Field::x];
@@ -107,8 +107,8 @@ EXASPH_HD IadResult<T> iad_kern_with(std::uint32_t a, NeighbourSpan nb, const Pa
     return c;
 }
 
-template <class T, class N>
-EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>& p,
+template <class T, class N, class Span>
+EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
                                 const Box<T>& box, const KernelView<T>& k,
                                 VelocityGradient<T>* grad = nullptr, bool own_k = false) {
     return p[Field::kx] ? iad_kern_with(a, nb, p, box, k, grad, p[Field::kx], own_k)
@@ -131,7 +131,8 @@ struct IadKernel {
     T stress_inv_w0 = T(0);
     int stress_exponent = 4;
 
-    EXASPH_HD double operator()(std::uint32_t i, NeighbourSpan nb) const {
+    template <class Span>
+    EXASPH_HD double operator()(std::uint32_t i, Span nb) const {
         VelocityGradient<T> g;
         auto r = iad_kern(i, nb, p, box, k, with_gradient ? &g : nullptr, own_k);
         if (stress_inv_w0 > T(0)) {

@@ -57,7 +57,8 @@ struct OmpParticleLoops {
     }
 };
 
-// Whether a neighbour kernel returns a number for the launcher to reduce.
+// Whether a neighbour kernel returns a number for the launcher to reduce (kernels are templates
+// on the span: ContiguousSpan from the CPU lists, NeighbourSpan from the interleaved ones).
 template <class Kernel>
 inline constexpr bool kReduces =
     !std::is_void_v<std::invoke_result_t<const Kernel&, std::uint32_t, NeighbourSpan>>;

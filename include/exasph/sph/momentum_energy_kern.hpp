@@ -38,10 +38,10 @@ struct MomentumEnergyResult {
 // neighbour (not twice through an aliased pointer) and X_a / m_a = 1. P/(Om k^2) comes
 // precomputed per particle (Field::pgrad, set by the density pass).
 template <class T, PairTerms kTerms = PairTerms::any, bool kAlphaField = true,
-          bool kVolumeElements = true, class N>
+          bool kVolumeElements = true, class N, class Span>
 EXASPH_HD MomentumEnergyResult<T>
-momentum_energy_kern(std::uint32_t a, NeighbourSpan nb, const ParticleView<T, N>& p,
-                     const Box<T>& box, const KernelView<T>& k, const Dissipation<T>& diss = {}) {
+momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, const Box<T>& box,
+                     const KernelView<T>& k, const Dissipation<T>& diss = {}) {
     constexpr bool kExtras = kTerms != PairTerms::plain;
     constexpr bool kLimited = kTerms == PairTerms::limited; // the limiter on, no stress
     const T alpha_u = diss.alpha_u;
@@ -195,7 +195,8 @@ struct MomentumEnergyKernel {
     Dissipation<T> diss;
     T courant;
 
-    EXASPH_HD T operator()(std::uint32_t i, NeighbourSpan nb) const {
+    template <class Span>
+    EXASPH_HD T operator()(std::uint32_t i, Span nb) const {
         auto r =
             momentum_energy_kern<T, kTerms, kAlphaField, kVolumeElements>(i, nb, p, box, k, diss);
         p[Field::ax][i] = r.ax;

@@ -37,7 +37,8 @@ struct SofteningZetaKernel {
     SofteningView<T> soft;
     T G;
 
-    EXASPH_HD void operator()(std::uint32_t a, NeighbourSpan nb) const {
+    template <class Span>
+    EXASPH_HD void operator()(std::uint32_t a, Span nb) const {
         const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
         const T *h = p[Field::h], *m = p[Field::m];
         double sum = 0;
@@ -57,7 +58,8 @@ struct SofteningForceKernel {
     ParticleView<T, N> p;
     KernelView<T> k;
 
-    EXASPH_HD void operator()(std::uint32_t a, NeighbourSpan nb) const {
+    template <class Span>
+    EXASPH_HD void operator()(std::uint32_t a, Span nb) const {
         const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
         const T *h = p[Field::h], *m = p[Field::m], *xi = p[Field::gsoft];
         const T* xm = p[Field::xm] ? p[Field::xm] : m; // X = m for standard SPH

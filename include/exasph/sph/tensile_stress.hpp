@@ -50,11 +50,10 @@ struct StressMatrix {
     bool singular;
 };
 
-template <class T, class N>
-EXASPH_HD StressMatrix<T> stress_matrix_kern(std::uint32_t a, NeighbourSpan nb,
-                                             const ParticleView<T, N>& p, const Box<T>& box,
-                                             const KernelView<T>& k, T inv_w0, int n,
-                                             const IadResult<T>& c) {
+template <class T, class N, class Span>
+EXASPH_HD StressMatrix<T> stress_matrix_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
+                                             const Box<T>& box, const KernelView<T>& k, T inv_w0,
+                                             int n, const IadResult<T>& c) {
     const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z], *h = p[Field::h];
     const T* xm = p[Field::xm] ? p[Field::xm] : p[Field::m];
     const T inv_ha = T(1) / h[a];

@@ -104,7 +104,7 @@ class NeighbourLists {
             }
         }
 
-        NeighbourSpan next() {
+        ContiguousSpan next() {
             const std::uint8_t* reached = rec_;
             const std::uint8_t* hits = rec_ + (ncand_ + 7) / 8;
             std::uint64_t pos = 0;
@@ -159,7 +159,7 @@ class NeighbourLists {
         Decoder dec(*this);
         dec.start(g);
         for (std::uint32_t j = group_begin(g); j < slot; ++j) dec.next();
-        NeighbourSpan s = dec.next();
+        const ContiguousSpan s = dec.next();
         return {s.index, s.index + s.count};
     }
 

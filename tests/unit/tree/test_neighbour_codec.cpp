@@ -95,7 +95,7 @@ TEST(NeighbourLists, GroupExpansionIsTheSearchOrderAndCompact) {
         for (std::size_t g = 0; g < nl.num_groups(); ++g) {
             dec.start(g);
             for (std::uint32_t i = nl.group_begin(g); i < nl.group_end(g); ++i) {
-                NeighbourSpan got = dec.next();
+                ContiguousSpan got = dec.next();
                 std::uint32_t c = find_neighbours(tree, sv, box, crit, i, want.data(),
                                                   std::uint32_t(want.size()));
                 ASSERT_EQ(got.count, c) << "particle " << i;

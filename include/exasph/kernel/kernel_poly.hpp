@@ -1,0 +1,83 @@
+#pragma once
+#include <cmath>
+#include <cstddef>
+
+#include "exasph/util/annotate.hpp"
+
+namespace exasph {
+
+// An even function of v = r/h on the kernel's support [0, 2] as a polynomial in s = v^2 (in the
+// variable t = s/2 - 1, which maps the support onto [-1, 1]): a pair loop evaluates it from
+// r^2/h^2 with multiply-adds, without the square root and the four table gathers (two per
+// linear interpolation, from tables that do not fit L1) of KernelView::value/derivative. The
+// density pass uses it (w and the grad-h term; 15 % faster on Sedov, docs/performance.md); the
+// IAD and momentum-energy passes keep the table, so that the IAD matrix and the gradients it
+// corrects use the same W (SPEC 5: exact for linear fields), and IAD's scalar loop was slower
+// with the polynomial.
+// A sinc kernel with an integer exponent is an entire function of s: the degree-20 Chebyshev
+// interpolant is exact to rounding for n <= 8 (w and the grad-h term within 5e-13 of w(0), unit
+// test), 8e-11 for n = 10, 4e-9 for n = 12, against the table's interpolation error of ~1e-9
+// (dv^2/8 |w''|). A non-integer n has a (2 - v)^n end that no polynomial follows as closely:
+// 1.3e-7 of w(0) for n = 3.5.
+inline constexpr int kPolyTerms = 21; // (the evaluation below is written out for 21)
+
+template <class T>
+struct KernelPoly {
+    T c[kPolyTerms]; // power series in t
+
+    // The function at s = v^2; 0 at and beyond v = 2 and for a NaN s (a product and a select,
+    // not a branch, so that pair loops vectorise).
+    EXASPH_HD EXASPH_INLINE T operator()(T s) const {
+        // Estrin's scheme: five levels of independent multiply-adds instead of Horner's chain
+        // of twenty (whose latency bound the loop, and its scalar remainder, when tried).
+        const T t = (s < T(4) ? s : T(4)) * T(0.5) - T(1); // finite for any s, NaN included
+        const T t2 = t * t, t4 = t2 * t2, t8 = t4 * t4, t16 = t8 * t8;
+        const T p0 = c[0] + c[1] * t, p1 = c[2] + c[3] * t, p2 = c[4] + c[5] * t;
+        const T p3 = c[6] + c[7] * t, p4 = c[8] + c[9] * t, p5 = c[10] + c[11] * t;
+        const T p6 = c[12] + c[13] * t, p7 = c[14] + c[15] * t, p8 = c[16] + c[17] * t;
+        const T p9 = c[18] + c[19] * t;
+        const T q0 = p0 + p1 * t2, q1 = p2 + p3 * t2, q2 = p4 + p5 * t2, q3 = p6 + p7 * t2;
+        const T q4 = p8 + p9 * t2;
+        const T o0 = q0 + q1 * t4, o1 = q2 + q3 * t4, o2 = q4 + c[20] * t4;
+        const T acc = (o0 + o1 * t8) + o2 * t16;
+        return acc * T(s < T(4));
+    }
+};
+
+// The Chebyshev interpolant of g(v) (an even function, given on [0, 2]) at kPolyTerms Chebyshev
+// nodes of t, converted to the power basis in t (the coefficients stay below 1 for the sinc
+// family, so Horner's rule loses nothing to cancellation).
+template <class T, class G>
+KernelPoly<T> fit_kernel_poly(G g) {
+    constexpr int n = kPolyTerms;
+    double cheb[n] = {};
+    for (int j = 0; j < n; ++j) {
+        double sum = 0;
+        for (int k = 0; k < n; ++k) {
+            const double theta = M_PI * (k + 0.5) / n;
+            const double v = std::sqrt(2.0 * (std::cos(theta) + 1.0));
+            sum += g(v) * std::cos(j * theta);
+        }
+        cheb[j] = sum * 2.0 / n;
+    }
+    cheb[0] *= 0.5;
+    // sum_j cheb_j T_j(t) in powers of t: T_0 = 1, T_1 = t, T_{j+1} = 2 t T_j - T_{j-1}.
+    double power[n] = {}, prev[n] = {}, cur[n] = {}, next[n] = {};
+    prev[0] = 1;
+    cur[1] = 1;
+    power[0] = cheb[0];
+    for (int i = 0; i < n; ++i) power[i] += cheb[1] * cur[i];
+    for (int j = 2; j < n; ++j) {
+        for (int i = 0; i < n; ++i) next[i] = (i > 0 ? 2 * cur[i - 1] : 0.0) - prev[i];
+        for (int i = 0; i < n; ++i) {
+            power[i] += cheb[j] * next[i];
+            prev[i] = cur[i];
+            cur[i] = next[i];
+        }
+    }
+    KernelPoly<T> p{};
+    for (int i = 0; i < n; ++i) p.c[i] = static_cast<T>(power[i]);
+    return p;
+}
+
+} // namespace exasph
