@@ -1,6 +1,5 @@
 #pragma once
 #include <cmath>
-#include <cstddef>
 
 #include "exasph/util/annotate.hpp"
 
@@ -10,7 +9,7 @@ namespace exasph {
 // variable t = s/2 - 1, which maps the support onto [-1, 1]): a pair loop evaluates it from
 // r^2/h^2 with multiply-adds, without the square root and the four table gathers (two per
 // linear interpolation, from tables that do not fit L1) of KernelView::value/derivative. The
-// density pass uses it (w and the grad-h term; 15 % faster on Sedov, docs/performance.md); the
+// density pass uses it (w and the grad-h term; 10-12 % faster on Sedov, docs/performance.md); the
 // IAD and momentum-energy passes keep the table, so that the IAD matrix and the gradients it
 // corrects use the same W (SPEC 5: exact for linear fields), and IAD's scalar loop was slower
 // with the polynomial.
@@ -46,7 +45,7 @@ struct KernelPoly {
 
 // The Chebyshev interpolant of g(v) (an even function, given on [0, 2]) at kPolyTerms Chebyshev
 // nodes of t, converted to the power basis in t (the coefficients stay below 1 for the sinc
-// family, so Horner's rule loses nothing to cancellation).
+// family, so evaluating in powers of t loses nothing to cancellation).
 template <class T, class G>
 KernelPoly<T> fit_kernel_poly(G g) {
     constexpr int n = kPolyTerms;
