@@ -9,7 +9,8 @@
 # Usage: bench/compare.sh [REF_BINARY]        (or REF=...; settings from the environment:)
 #   SIDES="100 50" (particles per axis)  ROUNDS=3  STEPS=7  CONFIGS="1x2 2x1" (ranks x threads)
 #   SCHEMES="std ve" (exasph --scheme std / its default ve; the reference --prop std / its
-#   default, ve)
+#   default, ve)  EXASPH_BIN=path (measure this exasph binary as it is, e.g. an older build kept
+#   aside; without it scripts/setup.sh builds the tree in $EXASPH_BUILD_DIR or build/)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 ref=${1:-${REF:-}}
@@ -26,8 +27,13 @@ if [ "$steps" -lt 3 ]; then
     echo "compare.sh: STEPS must be at least 3 (steps 2.. are timed)" >&2
     exit 2
 fi
-bash "$root/scripts/setup.sh" >/dev/null
-exe="${EXASPH_BUILD_DIR:-$root/build}/exasph"
+if [ -n "${EXASPH_BIN:-}" ]; then
+    [ -x "$EXASPH_BIN" ] || { echo "compare.sh: EXASPH_BIN '$EXASPH_BIN' is not an executable" >&2; exit 2; }
+    exe=$(cd "$(dirname "$EXASPH_BIN")" && pwd)/$(basename "$EXASPH_BIN")
+else
+    bash "$root/scripts/setup.sh" >/dev/null
+    exe="${EXASPH_BUILD_DIR:-$root/build}/exasph"
+fi
 timings=(/usr/bin/python3 "$root/bench/step_timings.py")
 . "$root/bench/lib.sh"
 mpi=(mpirun --oversubscribe --bind-to none)

@@ -143,11 +143,19 @@ def test_block_steps(r):
           "ranks within 1e-10")
 
 
-def wait_for(path, timeout=120):
-    t0 = time.time()
+def wait_for(path, timeout=120, proc=None, progress=None):
+    """Waits until `path` exists. Fails when the run `proc` exits first, or after `timeout`
+    seconds in which the file `progress` (a run's diagnostics.csv) did not grow: a loaded host
+    slows a run down without failing the wait, a stalled run still fails it."""
+    t0, last = time.time(), None
     while not path.exists():
+        if proc is not None and proc.poll() is not None:
+            raise AssertionError(f"{path} did not appear: the run exited with {proc.returncode}")
+        size = progress.stat().st_size if progress is not None and progress.exists() else None
+        if size != last:
+            t0, last = time.time(), size
         if time.time() - t0 > timeout:
-            raise AssertionError(f"{path} did not appear")
+            raise AssertionError(f"{path} did not appear (no progress for {timeout} s)")
         time.sleep(0.02)
 
 

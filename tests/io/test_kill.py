@@ -114,7 +114,7 @@ def test_killed_rank(r):
     p = subprocess.Popen(r.cmd(2, *RUN, "-s", 2000, *args, "--out", out),
                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                          start_new_session=True)
-    wait_for(out / "checkpoint_000020.h5")
+    wait_for(out / "checkpoint_000020.h5", proc=p, progress=out / "diagnostics.csv")
     ranks = subprocess.run(["pgrep", "-P", str(p.pid), "-f", Path(r.exe).name],
                            capture_output=True, text=True).stdout.split()
     assert len(ranks) == 2, f"expected the 2 ranks as children of mpirun, found {ranks}"

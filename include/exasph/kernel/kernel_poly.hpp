@@ -8,11 +8,10 @@ namespace exasph {
 // An even function of v = r/h on the kernel's support [0, 2] as a polynomial in s = v^2 (in the
 // variable t = s/2 - 1, which maps the support onto [-1, 1]): a pair loop evaluates it from
 // r^2/h^2 with multiply-adds, without the square root and the four table gathers (two per
-// linear interpolation, from tables that do not fit L1) of KernelView::value/derivative. The
-// density pass uses it (w and the grad-h term; 10-12 % faster on Sedov, docs/performance.md); the
-// IAD and momentum-energy passes keep the table, so that the IAD matrix and the gradients it
-// corrects use the same W (SPEC 5: exact for linear fields), and IAD's scalar loop was slower
-// with the polynomial.
+// linear interpolation, from tables that do not fit L1) of KernelView::value/derivative. Every
+// hydro pass evaluates W this way (density: w and the grad-h term, 10-12 % faster on Sedov; IAD,
+// the stress matrix and momentum-energy: w, IAD 19 % faster, docs/performance.md): the IAD
+// matrix and the gradients it corrects must use the same W (SPEC 5: exact for linear fields).
 // A sinc kernel with an integer exponent is an entire function of s: the degree-20 Chebyshev
 // interpolant is exact to rounding for n <= 8 (w and the grad-h term within 5e-13 of w(0), unit
 // test), 8e-11 for n = 10, 4e-9 for n = 12, against the table's interpolation error of ~1e-9

@@ -53,7 +53,7 @@ momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, cons
     const N *rho = p.narrow(Field::rho), *pr = p.narrow(Field::p), *c = p.narrow(Field::c),
             *pgrad = p.narrow(Field::pgrad);
     const T* alpha = p[Field::alpha];
-    const T ha = h[a], inv_ha = T(1) / ha, inv_ha3 = inv_ha * inv_ha * inv_ha;
+    const T ha = h[a], inv_ha = T(1) / ha, inv_ha2 = inv_ha * inv_ha, inv_ha3 = inv_ha2 * inv_ha;
     const T rho_a = rho[a], inv_rho_a = T(1) / rho_a;
     // Standard SPH carries no X and k fields: X = m, k = rho.
     const T *xm = p[Field::xm], *kx = p[Field::kx];
@@ -93,12 +93,13 @@ momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, cons
         T dx = image(x[b] - x[a], 0);
         T dy = image(y[b] - y[a], 1);
         T dz = image(z[b] - z[a], 2);
-        T r = std::sqrt(dx * dx + dy * dy + dz * dz);
+        T r2 = dx * dx + dy * dy + dz * dz;
+        T r = std::sqrt(r2);
         // 1/r once for the pair's divisions by r (0 for r = 0, where every numerator is 0)
         T inv_r = r > T(0) ? T(1) / r : T(0);
         T hb = h[b], inv_hb = T(1) / hb;
         T va = r * inv_ha, vb = r * inv_hb;
-        T kwa = k.value(va), kwb = k.value(vb);
+        T kwa = k.w_sq(r2 * inv_ha2), kwb = k.w_sq(r2 * inv_hb * inv_hb);
         T wa = kwa * inv_ha3;
         T wb = kwb * inv_hb * inv_hb * inv_hb;
         IadProduct<T> ca = iad_times(p, a, dx, dy, dz);

@@ -55,7 +55,7 @@ struct Dissipation {
     }
     // 1 / W(dp) of the stress's f_ab (0 without the stress).
     EXASPH_HD T stress_inv_w0(const KernelView<T>& k) const {
-        return stress() ? T(1) / k.value(eta_crit) : T(0);
+        return stress() ? T(1) / k.w_sq(eta_crit * eta_crit) : T(0);
     }
 };
 

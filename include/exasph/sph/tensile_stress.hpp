@@ -63,8 +63,8 @@ EXASPH_HD StressMatrix<T> stress_matrix_kern(std::uint32_t a, Span nb, const Par
     for (std::uint32_t i = 0; i < nb.count; ++i) {
         const std::uint32_t b = nb[i];
         const T dx = image(x[b] - x[a], 0), dy = image(y[b] - y[a], 1), dz = image(z[b] - z[a], 2);
-        const T r = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const T kwa = k.value(r * inv_ha), kwb = k.value(r / h[b]);
+        const T r2 = dx * dx + dy * dy + dz * dz;
+        const T kwa = k.w_sq(r2 * inv_ha * inv_ha), kwb = k.w_sq(r2 / (h[b] * h[b]));
         const T w = xm[b] * stress_weight(kwa, kwb, inv_w0, n) * kwa;
         add_second_moment(t11, t12, t13, t22, t23, t33, dx, dy, dz, w);
     }
