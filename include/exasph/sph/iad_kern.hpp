@@ -71,8 +71,8 @@ EXASPH_HD IadSums<T> iad_sums(std::uint32_t a, Span nb, const ParticleView<T, N>
     // density pass: 8 doubles per step in ymm pairs, no spills) another 10-18 %
     // (docs/performance.md).
     const PeriodicImage<T> image(box);
-#pragma omp simd simdlen(8) reduction(+ : t11, t12, t13, t22, t23, t33, dxx, dxy, dxz, dyx, dyy, dyz, dzx, \
-                               dzy, dzz)
+#pragma omp simd simdlen(8) \
+    reduction(+ : t11, t12, t13, t22, t23, t33, dxx, dxy, dxz, dyx, dyy, dyz, dzx, dzy, dzz)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         const std::uint32_t b = nb[n];
         const T dx = image(x[b] - x[a], 0);
