@@ -56,7 +56,7 @@ EXASPH_HD StressMatrix<T> stress_matrix_kern(std::uint32_t a, Span nb, const Par
                                              int n, const IadResult<T>& c) {
     const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z], *h = p[Field::h];
     const T* xm = p[Field::xm] ? p[Field::xm] : p[Field::m];
-    const T inv_ha = T(1) / h[a];
+    const T inv_ha = T(1) / h[a], inv_ha2 = inv_ha * inv_ha;
     const PeriodicImage<T> image(box);
     T t11 = 0, t12 = 0, t13 = 0, t22 = 0, t23 = 0, t33 = 0;
 #pragma omp simd reduction(+ : t11, t12, t13, t22, t23, t33)
@@ -64,7 +64,10 @@ EXASPH_HD StressMatrix<T> stress_matrix_kern(std::uint32_t a, Span nb, const Par
         const std::uint32_t b = nb[i];
         const T dx = image(x[b] - x[a], 0), dy = image(y[b] - y[a], 1), dz = image(z[b] - z[a], 2);
         const T r2 = dx * dx + dy * dy + dz * dz;
-        const T kwa = k.w_sq(r2 * inv_ha * inv_ha), kwb = k.w_sq(r2 / (h[b] * h[b]));
+        // W evaluated as momentum-energy evaluates it (r^2 times (1/h)^2), so that M and the force
+        // that uses it see the same f_ab.
+        const T inv_hb = T(1) / h[b];
+        const T kwa = k.w_sq(r2 * inv_ha2), kwb = k.w_sq(r2 * inv_hb * inv_hb);
         const T w = xm[b] * stress_weight(kwa, kwb, inv_w0, n) * kwa;
         add_second_moment(t11, t12, t13, t22, t23, t33, dx, dy, dz, w);
     }
