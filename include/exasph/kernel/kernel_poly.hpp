@@ -19,6 +19,25 @@ namespace exasph {
 // 1.3e-7 of w(0) for n = 3.5.
 inline constexpr int kPolyTerms = 21; // (the evaluation below is written out for 21)
 
+// a b + c, fused (one rounding) wherever the hardware has FMA, explicitly: left to the
+// compiler, the vectorised body of a pair loop and its scalar remainder may contract different
+// products, and a pair's two members (one in each) would then see W differing by an ulp; in
+// single precision that breaks the pair terms' antisymmetry at 1e-10 of the momentum.
+template <class T>
+EXASPH_HD EXASPH_INLINE T mul_add(T a, T b, T c) {
+#if defined(__CUDA_ARCH__) || defined(__FMA__)
+    return std::fma(a, b, c);
+#else
+    return a * b + c; // no FMA: nothing to contract either
+#endif
+}
+
+// |d|^2 with the same roundings in every loop and lane (mul_add).
+template <class T>
+EXASPH_HD EXASPH_INLINE T squared_norm(T dx, T dy, T dz) {
+    return mul_add(dz, dz, mul_add(dy, dy, dx * dx));
+}
+
 template <class T>
 struct KernelPoly {
     T c[kPolyTerms]; // power series in t
@@ -30,14 +49,15 @@ struct KernelPoly {
         // of twenty (whose latency bound the loop, and its scalar remainder, when tried).
         const T t = (s < T(4) ? s : T(4)) * T(0.5) - T(1); // finite for any s, NaN included
         const T t2 = t * t, t4 = t2 * t2, t8 = t4 * t4, t16 = t8 * t8;
-        const T p0 = c[0] + c[1] * t, p1 = c[2] + c[3] * t, p2 = c[4] + c[5] * t;
-        const T p3 = c[6] + c[7] * t, p4 = c[8] + c[9] * t, p5 = c[10] + c[11] * t;
-        const T p6 = c[12] + c[13] * t, p7 = c[14] + c[15] * t, p8 = c[16] + c[17] * t;
-        const T p9 = c[18] + c[19] * t;
-        const T q0 = p0 + p1 * t2, q1 = p2 + p3 * t2, q2 = p4 + p5 * t2, q3 = p6 + p7 * t2;
-        const T q4 = p8 + p9 * t2;
-        const T o0 = q0 + q1 * t4, o1 = q2 + q3 * t4, o2 = q4 + c[20] * t4;
-        const T acc = (o0 + o1 * t8) + o2 * t16;
+        const T p0 = mul_add(c[1], t, c[0]), p1 = mul_add(c[3], t, c[2]);
+        const T p2 = mul_add(c[5], t, c[4]), p3 = mul_add(c[7], t, c[6]);
+        const T p4 = mul_add(c[9], t, c[8]), p5 = mul_add(c[11], t, c[10]);
+        const T p6 = mul_add(c[13], t, c[12]), p7 = mul_add(c[15], t, c[14]);
+        const T p8 = mul_add(c[17], t, c[16]), p9 = mul_add(c[19], t, c[18]);
+        const T q0 = mul_add(p1, t2, p0), q1 = mul_add(p3, t2, p2), q2 = mul_add(p5, t2, p4);
+        const T q3 = mul_add(p7, t2, p6), q4 = mul_add(p9, t2, p8);
+        const T o0 = mul_add(q1, t4, q0), o1 = mul_add(q3, t4, q2), o2 = mul_add(c[20], t4, q4);
+        const T acc = mul_add(o2, t16, mul_add(o1, t8, o0));
         return acc * T(s < T(4));
     }
 };

@@ -1,6 +1,7 @@
 #pragma once
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 #include "exasph/kernel/kernel_poly.hpp"
@@ -19,6 +20,32 @@ struct KernelView {
     int size;
     KernelPoly<T> w_sq;     // w as a polynomial in v^2
     KernelPoly<T> gradh_sq; // 3 w + v dw/dv (the grad-h sum's term, SPEC 3) in v^2
+    // The same two in single precision: pair loops whose results are stored in float (the
+    // derived fields' default storage) evaluate them in float, twice the lanes per instruction.
+    KernelPoly<float> w_sq_f, gradh_sq_f;
+
+    // w_sq / gradh_sq in the pair arithmetic's precision P (float or T).
+    template <class P>
+    EXASPH_HD EXASPH_INLINE const KernelPoly<P>& w_in() const {
+        if constexpr (std::is_same_v<P, T>)
+            return w_sq;
+        else
+            return w_sq_f;
+    }
+    template <class P>
+    EXASPH_HD EXASPH_INLINE const KernelPoly<P>& gradh_in() const {
+        if constexpr (std::is_same_v<P, T>)
+            return gradh_sq;
+        else
+            return gradh_sq_f;
+    }
+    // w at v^2 = r^2 (1/h)^2 in precision P: momentum-energy and the artificial stress's matrix
+    // evaluate a pair's two W this way, so that both members of the pair, and M and the force
+    // that uses it, see the same value to the bit.
+    template <class P>
+    EXASPH_HD EXASPH_INLINE T w_at(T r2, T inv_h2) const {
+        return T(w_in<P>()(P(r2 * inv_h2)));
+    }
 
     // Branch-free, so that neighbour loops calling it vectorise: the index is clamped and the
     // value multiplied by 0 at and beyond v = 2 (a select there makes GCC move the table loads
@@ -74,12 +101,15 @@ class KernelTable {
             dw_[i] = static_cast<T>(norm_ * shape.df(v, shape.param));
         }
         w_sq_ = fit_kernel_poly<T>([&](double v) { return exact_value(v); });
-        gradh_sq_ = fit_kernel_poly<T>(
-            [&](double v) { return 3 * exact_value(v) + v * exact_derivative(v); });
+        const auto gradh = [&](double v) { return 3 * exact_value(v) + v * exact_derivative(v); };
+        gradh_sq_ = fit_kernel_poly<T>(gradh);
+        w_sq_f_ = fit_kernel_poly<float>([&](double v) { return exact_value(v); });
+        gradh_sq_f_ = fit_kernel_poly<float>(gradh);
     }
 
     KernelView<T> view() const {
-        return {w_.data(), dw_.data(), T(kSize - 1) / T(2), kSize, w_sq_, gradh_sq_};
+        return {w_.data(), dw_.data(), T(kSize - 1) / T(2), kSize, w_sq_,
+                gradh_sq_, w_sq_f_,    gradh_sq_f_};
     }
     double normalisation() const { return norm_; }
     // Direct (non-tabulated) evaluation, for tests and set-up code.
@@ -93,6 +123,7 @@ class KernelTable {
     double norm_ = 0;
     FieldArray<T> w_, dw_; // read by the kernels, on a device too
     KernelPoly<T> w_sq_{}, gradh_sq_{};
+    KernelPoly<float> w_sq_f_{}, gradh_sq_f_{};
 };
 
 } // namespace exasph

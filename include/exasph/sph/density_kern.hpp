@@ -41,6 +41,13 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, Span nb, const Particle
     // loop vectorises. simdlen(8): left to itself GCC 12 picks 16 doubles per step for this
     // loop (two zmm registers per value, spilled, AVX-512 gathers); with 8 it reads the
     // neighbours with scalar loads into ymm pairs, 8-16 % faster on Zen 4 (docs/performance.md).
+    // The kernel's polynomials run in N, the precision rho, P/(Omega k^2) and nc are stored in
+    // (float by default: 9 % faster on Sedov, docs/performance.md; each term then errs by up to
+    // 3e-7 of w(0), 1.4e-6 in the grad-h term, from float's rounding of v^2, test_kernel); the
+    // distances and the sums stay in T, so the results do not depend on the order of the
+    // neighbours beyond T's round-off (ranks and threads agree).
+    const KernelPoly<N>& w_poly = k.template w_in<N>();
+    const KernelPoly<N>& gradh_poly = k.template gradh_in<N>();
     const PeriodicImage<T> image(box);
 #pragma omp simd simdlen(8) reduction(+ : k_sum, dh_sum, nc)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
@@ -48,13 +55,12 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, Span nb, const Particle
         T dx = image(x[b] - x[a], 0);
         T dy = image(y[b] - y[a], 1);
         T dz = image(z[b] - z[a], 2);
-        T r2 = dx * dx + dy * dy + dz * dz;
-        T s = r2 * inv_h2; // v^2
-        T inside = T(s < T(4));
+        const N s = N((dx * dx + dy * dy + dz * dz) * inv_h2); // v^2
+        T inside = T(s < N(4));
         nc += inside;
         T xb = xm[b] * inside;
-        k_sum += xb * k.w_sq(s);
-        dh_sum += xb * k.gradh_sq(s);
+        k_sum += xb * T(w_poly(s));
+        dh_sum += xb * T(gradh_poly(s));
     }
     T h3 = ha * ha * ha;
     T kx = static_cast<T>(k_sum) / h3;

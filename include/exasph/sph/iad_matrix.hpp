@@ -53,14 +53,25 @@ template <class T>
 struct IadProduct {
     T x, y, z;
 };
-template <class T, class N>
-EXASPH_HD EXASPH_INLINE IadProduct<T> iad_times(const ParticleView<T, N>& p, std::uint32_t i, T dx,
-                                                T dy, T dz) {
-    // C is stored in float (is_narrow; double with --double-precision); the products are in T.
-    T c11 = p.narrow(Field::c11)[i], c12 = p.narrow(Field::c12)[i], c13 = p.narrow(Field::c13)[i];
-    T c22 = p.narrow(Field::c22)[i], c23 = p.narrow(Field::c23)[i], c33 = p.narrow(Field::c33)[i];
-    return {c11 * dx + c12 * dy + c13 * dz, c12 * dx + c22 * dy + c23 * dz,
-            c13 * dx + c23 * dy + c33 * dz};
-}
+// The stored C's six fields (float, or T with --double-precision), taken from the view once
+// before a pair loop: read through the view inside the loop, their bases are loads GCC does
+// not hoist, and it then cannot vectorise the loop with AVX2's emulated gathers.
+template <class N>
+struct IadMatrixFields {
+    const N *c11, *c12, *c13, *c22, *c23, *c33;
+
+    template <class T>
+    EXASPH_HD explicit IadMatrixFields(const ParticleView<T, N>& p)
+        : c11(p.narrow(Field::c11)), c12(p.narrow(Field::c12)), c13(p.narrow(Field::c13)),
+          c22(p.narrow(Field::c22)), c23(p.narrow(Field::c23)), c33(p.narrow(Field::c33)) {}
+
+    // C_i (x) d, the products in T.
+    template <class T>
+    EXASPH_HD EXASPH_INLINE IadProduct<T> times(std::uint32_t i, T dx, T dy, T dz) const {
+        const T m11 = c11[i], m12 = c12[i], m13 = c13[i], m22 = c22[i], m23 = c23[i], m33 = c33[i];
+        return {m11 * dx + m12 * dy + m13 * dz, m12 * dx + m22 * dy + m23 * dz,
+                m13 * dx + m23 * dy + m33 * dz};
+    }
+};
 
 } // namespace exasph

@@ -84,8 +84,12 @@ momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, cons
             strain[e] = p.narrow(strain_rate_field(e));
             ea[e] = strain[e][a];
         }
+    const IadMatrixFields<N> cmat(p);
     const PeriodicImage<T> image(box);
-#pragma omp simd reduction(+ : ax, ay, az, du_p, du_av, divv, du_cond, du_ts) \
+    // simdlen(8): on AVX2 GCC 12 emulates the gathers, and only with as many lanes as a vector
+    // of the 32-bit indices (8) does it accept the float fields' ones; with its own choice (4
+    // doubles) the loop stayed scalar there (2x slower on Zen 2, docs/performance.md).
+#pragma omp simd simdlen(8) reduction(+ : ax, ay, az, du_p, du_av, divv, du_cond, du_ts) \
     reduction(max : vsig_max)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
         const std::uint32_t b = nb[n];
@@ -93,17 +97,19 @@ momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, cons
         T dx = image(x[b] - x[a], 0);
         T dy = image(y[b] - y[a], 1);
         T dz = image(z[b] - z[a], 2);
-        T r2 = dx * dx + dy * dy + dz * dz;
+        T r2 = squared_norm(dx, dy, dz); // as the stress matrix computes it
         T r = std::sqrt(r2);
         // 1/r once for the pair's divisions by r (0 for r = 0, where every numerator is 0)
         T inv_r = r > T(0) ? T(1) / r : T(0);
         T hb = h[b], inv_hb = T(1) / hb;
         T va = r * inv_ha, vb = r * inv_hb;
-        T kwa = k.w_sq(r2 * inv_ha2), kwb = k.w_sq(r2 * inv_hb * inv_hb);
+        // w in N (float by default: 9-11 % faster on Sedov, docs/performance.md), 1/h squared
+        // before it multiplies r^2 for both members, so a and b compute the same w_ab(h) to the bit
+        T kwa = k.template w_at<N>(r2, inv_ha2), kwb = k.template w_at<N>(r2, inv_hb * inv_hb);
         T wa = kwa * inv_ha3;
         T wb = kwb * inv_hb * inv_hb * inv_hb;
-        IadProduct<T> ca = iad_times(p, a, dx, dy, dz);
-        IadProduct<T> cb = iad_times(p, b, dx, dy, dz);
+        IadProduct<T> ca = cmat.times(a, dx, dy, dz);
+        IadProduct<T> cb = cmat.times(b, dx, dy, dz);
         T aax = ca.x * wa, aay = ca.y * wa, aaz = ca.z * wa; // A_ab(h_a)
         T abx = cb.x * wb, aby = cb.y * wb, abz = cb.z * wb; // A_ab(h_b)
         T vabx = vx[a] - vx[b], vaby = vy[a] - vy[b], vabz = vz[a] - vz[b];

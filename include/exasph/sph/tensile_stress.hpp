@@ -63,11 +63,12 @@ EXASPH_HD StressMatrix<T> stress_matrix_kern(std::uint32_t a, Span nb, const Par
     for (std::uint32_t i = 0; i < nb.count; ++i) {
         const std::uint32_t b = nb[i];
         const T dx = image(x[b] - x[a], 0), dy = image(y[b] - y[a], 1), dz = image(z[b] - z[a], 2);
-        const T r2 = dx * dx + dy * dy + dz * dz;
-        // W evaluated as momentum-energy evaluates it (r^2 times (1/h)^2), so that M and the force
-        // that uses it see the same f_ab.
+        const T r2 = squared_norm(dx, dy, dz); // as momentum-energy computes it
+        // W evaluated as momentum-energy evaluates it (KernelView::w_at in N), so that M and the
+        // force that uses it see the same f_ab.
         const T inv_hb = T(1) / h[b];
-        const T kwa = k.w_sq(r2 * inv_ha2), kwb = k.w_sq(r2 * inv_hb * inv_hb);
+        const T kwa = k.template w_at<N>(r2, inv_ha2),
+                kwb = k.template w_at<N>(r2, inv_hb * inv_hb);
         const T w = xm[b] * stress_weight(kwa, kwb, inv_w0, n) * kwa;
         add_second_moment(t11, t12, t13, t22, t23, t33, dx, dy, dz, w);
     }

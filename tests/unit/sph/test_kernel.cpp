@@ -110,6 +110,31 @@ TEST(SincKernelPolynomial, NonIntegerAndLargestExponentsWithinTheTablesBound) {
     }
 }
 
+// The single-precision copies that the density pass evaluates with float derived fields,
+// at the float v^2 the pass computes. Float arithmetic itself sets the error: t = v^2/2 - 1
+// rounds by up to 6e-8, which moves the value by |d/dt| times that (steeper for the grad-h
+// term than for w), plus the evaluation's roundings: measured 9.6e-7 (n = 4), 1.4e-6 (6) and
+// 1.7e-6 (8) of w(0), mostly in the grad-h term; w alone 3e-7.
+TEST(SincKernelPolynomial, SinglePrecisionWithinFloatRoundOff) {
+    for (double n : {4.0, 6.0, 8.0}) {
+        KernelTable<double> k(sinc_kernel(n));
+        const auto view = k.view();
+        const double w0 = k.exact_value(0);
+        double err = 0;
+        for (int i = 0; i <= 20000; ++i) {
+            const float s = float(i * 1e-4 * i * 1e-4);
+            const double v = std::sqrt(double(s));
+            const double gradh = 3 * k.exact_value(v) + v * k.exact_derivative(v);
+            err = std::max(err, std::abs(double(view.w_in<float>()(s)) - k.exact_value(v)));
+            err = std::max(err, std::abs(double(view.gradh_in<float>()(s)) - gradh));
+        }
+        std::printf("n = %g: single-precision polynomial error %.2e of w(0)\n", n, err / w0);
+        EXPECT_LT(err / w0, 2.5e-6) << n;
+        EXPECT_EQ(view.w_in<float>()(4.0f), 0.0f);
+        EXPECT_EQ(&view.w_in<double>(), &view.w_sq); // the working precision's own polynomial
+    }
+}
+
 TEST(SincKernelPolynomial, ZeroOutsideSupport) {
     KernelTable<double> k(sinc_kernel(6));
     const auto view = k.view();
