@@ -42,9 +42,9 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, Span nb, const Particle
     // loop (two zmm registers per value, spilled, AVX-512 gathers); with 8 it reads the
     // neighbours with scalar loads into ymm pairs, 8-16 % faster on Zen 4 (docs/performance.md).
     // The kernel's polynomials run in N, the precision rho, P/(Omega k^2) and nc are stored in
-    // (float by default: the pass 22 % faster on Sedov, docs/performance.md; each term errs by up to
-    // 3e-7 of w(0), 1.4e-6 in the grad-h term, from float's rounding of v^2, test_kernel); the
-    // distances and the sums stay in T, so the results do not depend on the order of the
+    // (float by default: the pass 22 % faster on Sedov, docs/performance.md; each term errs by
+    // up to 3e-7 of w(0), 1.4e-6 in the grad-h term, from float's rounding of v^2, test_kernel);
+    // the distances and the sums stay in T, so the results do not depend on the order of the
     // neighbours beyond T's round-off (ranks and threads agree).
     const KernelPoly<N>& w_poly = k.template w_in<N>();
     const KernelPoly<N>& gradh_poly = k.template gradh_in<N>();
