@@ -112,6 +112,29 @@ inline std::uint32_t expand_mask(std::uint32_t mask, std::uint32_t first, std::u
 #endif
 }
 
+// expand_mask for a mask of at most 16 bits, without branches on its value: the decoder's unit
+// (a leaf of up to 16 particles, the usual size, in one call). On AVX2 both bytes are expanded
+// whatever they hold; with expand_mask's early exit on a zero byte the branch mispredicted on
+// about every other leaf (the density pass spent 28 % of its time decoding on Zen 2).
+inline std::uint32_t expand_mask16(std::uint32_t mask, std::uint32_t first, std::uint32_t* out) {
+#if defined(__AVX2__) && !defined(__AVX512F__)
+    const unsigned lo = mask & 0xFFu, hi = (mask >> 8) & 0xFFu;
+    const __m128i row_lo = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(kByteBits[lo].data()));
+    const __m128i row_hi = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(kByteBits[hi].data()));
+    const __m256i base = _mm256_set1_epi32(int(first));
+    const __m256i eight = _mm256_set1_epi32(8);
+    const auto c_lo = std::uint32_t(std::popcount(lo));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out),
+                        _mm256_add_epi32(_mm256_cvtepu8_epi32(row_lo), base));
+    _mm256_storeu_si256(
+        reinterpret_cast<__m256i*>(out + c_lo),
+        _mm256_add_epi32(_mm256_cvtepu8_epi32(row_hi), _mm256_add_epi32(base, eight)));
+    return c_lo + std::uint32_t(std::popcount(hi));
+#else
+    return expand_mask(mask, first, out);
+#endif
+}
+
 // Sets bit `pos` of a zero-initialised byte record.
 inline void set_bit(std::uint8_t* base, std::uint64_t pos) {
     base[pos >> 3] |= std::uint8_t(1u << (pos & 7u));

@@ -48,6 +48,16 @@ TEST(NeighbourCodec, BitsAndMaskExpansion) {
         ASSERT_EQ(c, want.size());
         EXPECT_TRUE(std::equal(want.begin(), want.end(), out.begin())) << std::hex << mask;
     }
+    // The decoder's 16-bit unit: every mask, appended after earlier output (which it must keep).
+    for (std::uint32_t mask = 0; mask < (1u << 16); ++mask) {
+        out.assign(64, 7u);
+        const std::uint32_t c = codec::expand_mask16(mask, 500, out.data() + 3);
+        std::vector<std::uint32_t> want(3, 7u);
+        for (std::uint32_t k = 0; k < 16; ++k)
+            if (mask >> k & 1u) want.push_back(500 + k);
+        ASSERT_EQ(c + 3, want.size()) << std::hex << mask;
+        ASSERT_TRUE(std::equal(want.begin(), want.end(), out.begin())) << std::hex << mask;
+    }
 }
 
 TEST(NeighbourCodec, ArenaKeepsRecordsInPlaceAcrossBlocks) {
