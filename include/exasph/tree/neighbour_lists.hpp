@@ -225,7 +225,7 @@ class NeighbourLists {
                 const std::size_t owned_candidates = candidates.size();
                 if (halos) collect_leaves(*halos, group, box, crit, candidates);
                 reads_halos_[g] = candidates.size() > owned_candidates;
-                boxes.assign(candidates);
+                boxes.assign(candidates, group, image);
                 rec.clear();
                 out_of_order |= !encode_candidates(candidates, rec);
                 for (std::uint32_t s = group_begin(g); s < group_end(g); ++s) {
