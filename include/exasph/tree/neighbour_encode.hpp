@@ -126,14 +126,13 @@ EXASPH_INLINE const unsigned char* mark_reached_leaves(CandidateBoxes<T>& boxes,
 // leaves whose boxes come within reach, then one bit per particle of those leaves (in
 // candidate order) telling whether it is a neighbour. Returns the neighbour count.
 template <class T>
-std::uint32_t encode_neighbours(const std::vector<const OctreeNode<T>*>& candidates,
-                                CandidateBoxes<T>& boxes, const SearchView<T>& p,
+std::uint32_t encode_neighbours(CandidateBoxes<T>& boxes, const SearchView<T>& p,
                                 const PeriodicImage<T>& im, NeighbourCriterion crit,
                                 std::uint32_t i, std::vector<std::uint8_t>& rec) {
     const T pos[3] = {p.x[i], p.y[i], p.z[i]};
     const T hi = p.h[i];
     const bool symmetric = crit == NeighbourCriterion::symmetric;
-    const std::size_t nleaves = candidates.size();
+    const std::size_t nleaves = boxes.size.size(); // the candidate leaves
     const unsigned char* reached = mark_reached_leaves(boxes, nleaves, pos, hi, symmetric, im);
     const std::uint32_t* leaf_begin = boxes.begin.data();
     const std::uint32_t* leaf_size = boxes.size.data();

@@ -230,7 +230,7 @@ class NeighbourLists {
                 out_of_order |= !encode_candidates(candidates, rec);
                 for (std::uint32_t s = group_begin(g); s < group_end(g); ++s) {
                     const std::uint32_t c =
-                        encode_neighbours(candidates, boxes, p, image, crit, member(s), rec);
+                        encode_neighbours(boxes, p, image, crit, member(s), rec);
                     max_count = std::max(max_count, c);
                     pairs += c;
                 }
