@@ -34,18 +34,35 @@ class ExactDensity {
 
     bool valid() const { return kind_ != Kind::none; }
 
-    double operator()(double r, double t) const {
-        if (kind_ == Kind::noh) return noh_.at(r, t).rho;
-        if (kind_ != Kind::sedov || t <= 0) return rho1_;
-        const double rs = xi0_ * std::pow(energy_ * t * t / rho1_, 0.2);
-        const double xi = r / rs;
-        if (xi >= 1) return rho1_;
-        const double s = xi * kTable;
-        const int i = int(s);
-        const double f = s - i;
-        const std::vector<double>& g = *table_;
-        return rho1_ * (g[i] + f * (g[i + 1] - g[i]));
-    }
+    // rho(r) at one time t: the shock radius R(t) (a power, ~50 ns) once, then per particle a
+    // table lookup (the diagnostics evaluate it for every particle at every step).
+    class AtTime {
+      public:
+        double operator()(double r) const {
+            if (e_.kind_ == Kind::noh) return e_.noh_.at(r, t_).rho;
+            if (rs_ <= 0) return e_.rho1_;
+            const double xi = r / rs_;
+            if (xi >= 1) return e_.rho1_;
+            const double s = xi * kTable;
+            const int i = int(s);
+            const double f = s - i;
+            const std::vector<double>& g = *e_.table_;
+            return e_.rho1_ * (g[i] + f * (g[i + 1] - g[i]));
+        }
+
+      private:
+        friend class ExactDensity;
+        AtTime(const ExactDensity& e, double t) : e_(e), t_(t) {
+            if (e.kind_ == Kind::sedov && t > 0)
+                rs_ = e.xi0_ * std::pow(e.energy_ * t * t / e.rho1_, 0.2);
+        }
+        const ExactDensity& e_;
+        double t_;
+        double rs_ = 0; // Sedov's shock radius (0: before the blast, or not Sedov)
+    };
+    AtTime at(double t) const { return AtTime(*this, t); }
+
+    double operator()(double r, double t) const { return at(t)(r); }
 
   private:
     enum class Kind { none, sedov, noh };

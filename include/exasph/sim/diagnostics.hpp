@@ -133,13 +133,14 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     double ratio = n_owned > 0 ? double(n_halo) / double(n_owned) : 0.0;
     out[10] = {ratio, ratio};
     const T *xp = ps.data(Field::x_m1), *yp = ps.data(Field::y_m1), *zp = ps.data(Field::z_m1);
+    const auto exact_rho = exact.at(t_rho);
     double l1 = 0, rho_max = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n_owned; ++i) {
         rho_max = std::max(rho_max, rho(i));
         if (exact.valid()) {
             double r =
                 std::sqrt(double(xp[i]) * xp[i] + double(yp[i]) * yp[i] + double(zp[i]) * zp[i]);
-            l1 += std::abs(rho(i) - exact(r, t_rho));
+            l1 += std::abs(rho(i) - exact_rho(r));
         }
     }
     out[11] = {l1, rho_max};
