@@ -1,9 +1,11 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/density_avx2.hpp"
 #include "exasph/sph/eos.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/box.hpp"
@@ -18,34 +20,32 @@ struct DensityResult {
     std::uint32_t nc; // neighbours with r < 2 h_a, self excluded (SPEC 2)
 };
 
-// SPEC 3 with generalised volume elements (Hopkins 2013; Cabezon et al. 2017): every particle
-// carries a weight X (X = m gives standard SPH exactly), k_a = sum_b X_b W_ab(h_a) including
-// b = a, V_a = X_a / k_a, rho_a = m_a / V_a, and the grad-h term
-// Omega_a = 1 - 1/(3 k_a h_a^3) sum_b X_b (3 w(v) + v w'(v)). Both terms come from the kernel's
-// polynomials in v^2 (KernelPoly): no square root and no table gathers per pair.
+// The pair sums of density_kern: k starts from k0 and the grad-h sum from dh0 (a's own terms).
+template <class T>
+struct DensityPairSums {
+    double k, dh;
+    T nc;
+};
+
+// Pairs beyond 2 h_a (listed because of h_b) are masked rather than skipped, so that the loop
+// vectorises. simdlen(8): left to itself GCC 12 picks 16 doubles per step for this loop (two
+// zmm registers per value, spilled, AVX-512 gathers); with 8 it reads the neighbours with scalar
+// loads into ymm pairs, 8-16 % faster on Zen 4 (docs/performance.md).
+// The kernel's polynomials run in N, the precision rho, P/(Omega k^2) and nc are stored in (float
+// by default: the pass 22 % faster on Sedov, docs/performance.md; each term errs by up to 3e-7
+// of w(0), 1.4e-6 in the grad-h term, from float's rounding of v^2, test_kernel); the distances
+// and the sums stay in T, so the results do not depend on the order of the neighbours beyond
+// T's round-off (ranks and threads agree).
 template <class T, class N, class Span>
-EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
-                                        const Box<T>& box, const KernelView<T>& k) {
-    const T* x = p[Field::x];
-    const T* y = p[Field::y];
-    const T* z = p[Field::z];
-    // Standard SPH carries no X field: X = m.
-    const T* xm = p[Field::xm] ? p[Field::xm] : p[Field::m];
+EXASPH_HD DensityPairSums<T> density_pairs_portable(std::uint32_t a, Span nb,
+                                                    const ParticleView<T, N>& p, const Box<T>& box,
+                                                    const KernelView<T>& k, double k0, double dh0) {
+    const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
+    const T* xm = p[Field::xm] ? p[Field::xm] : p[Field::m]; // standard SPH: X = m
     const T ha = p[Field::h][a];
     const T inv_h2 = T(1) / (ha * ha);
-    const T w0 = k.w_sq(T(0));
-    double k_sum = xm[a] * w0; // w(v) sums, divided by h^3 at the end
-    double dh_sum = xm[a] * T(3) * w0;
+    double k_sum = k0, dh_sum = dh0;
     T nc = 0; // counted in T: one type in the simd reductions (GCC rejects mixed ones)
-    // Pairs beyond 2 h_a (listed because of h_b) are masked rather than skipped, so that the
-    // loop vectorises. simdlen(8): left to itself GCC 12 picks 16 doubles per step for this
-    // loop (two zmm registers per value, spilled, AVX-512 gathers); with 8 it reads the
-    // neighbours with scalar loads into ymm pairs, 8-16 % faster on Zen 4 (docs/performance.md).
-    // The kernel's polynomials run in N, the precision rho, P/(Omega k^2) and nc are stored in
-    // (float by default: the pass 22 % faster on Sedov, docs/performance.md; each term errs by
-    // up to 3e-7 of w(0), 1.4e-6 in the grad-h term, from float's rounding of v^2, test_kernel);
-    // the distances and the sums stay in T, so the results do not depend on the order of the
-    // neighbours beyond T's round-off (ranks and threads agree).
     const KernelPoly<N>& w_poly = k.template w_in<N>();
     const KernelPoly<N>& gradh_poly = k.template gradh_in<N>();
     const PeriodicImage<T> image(box);
@@ -55,18 +55,50 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, Span nb, const Particle
         T dx = image(x[b] - x[a], 0);
         T dy = image(y[b] - y[a], 1);
         T dz = image(z[b] - z[a], 2);
-        const N s = N((dx * dx + dy * dy + dz * dz) * inv_h2); // v^2
+        const N s = N(squared_norm(dx, dy, dz) * inv_h2); // v^2
         T inside = T(s < N(4));
         nc += inside;
         T xb = xm[b] * inside;
         k_sum += xb * T(w_poly(s));
         dh_sum += xb * T(gradh_poly(s));
     }
+    return {k_sum, dh_sum, nc};
+}
+
+// The pair sums, with AVX2 where the build targets it (the portable loop's arithmetic, lane for
+// lane: sph/density_avx2.hpp).
+template <class T, class N, class Span>
+EXASPH_HD DensityPairSums<T> density_pairs(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
+                                           const Box<T>& box, const KernelView<T>& k, double k0,
+                                           double dh0) {
+#ifdef EXASPH_AVX2_PAIRS
+    if constexpr (std::is_same_v<T, double> && std::is_same_v<N, float> &&
+                  std::is_same_v<Span, ContiguousSpan>) {
+        const avx2::DensitySums s = avx2::DensityPairs(a, p, box, k).sum(nb);
+        return {k0 + s.k, dh0 + s.dh, T(s.nc)};
+    }
+#endif
+    return density_pairs_portable(a, nb, p, box, k, k0, dh0);
+}
+
+// SPEC 3 with generalised volume elements (Hopkins 2013; Cabezon et al. 2017): every particle
+// carries a weight X (X = m gives standard SPH exactly), k_a = sum_b X_b W_ab(h_a) including
+// b = a, V_a = X_a / k_a, rho_a = m_a / V_a, and the grad-h term
+// Omega_a = 1 - 1/(3 k_a h_a^3) sum_b X_b (3 w(v) + v w'(v)). Both terms come from the kernel's
+// polynomials in v^2 (KernelPoly): no square root and no table gathers per pair.
+template <class T, class N, class Span>
+EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
+                                        const Box<T>& box, const KernelView<T>& k) {
+    // Standard SPH carries no X field: X = m.
+    const T* xm = p[Field::xm] ? p[Field::xm] : p[Field::m];
+    const T ha = p[Field::h][a];
+    const T w0 = k.w_sq(T(0));
+    const DensityPairSums<T> s = density_pairs(a, nb, p, box, k, xm[a] * w0, xm[a] * T(3) * w0);
     T h3 = ha * ha * ha;
-    T kx = static_cast<T>(k_sum) / h3;
+    T kx = static_cast<T>(s.k) / h3;
     T rho = kx * (p[Field::m][a] / xm[a]); // m/X = 1 exactly for standard SPH
-    T omega = T(1) - static_cast<T>(dh_sum) / (T(3) * kx * h3);
-    return {rho, kx, omega, std::uint32_t(nc)};
+    T omega = T(1) - static_cast<T>(s.dh) / (T(3) * kx * h3);
+    return {rho, kx, omega, std::uint32_t(s.nc)};
 }
 
 // The density pass of one particle (SPEC 3 and 4): rho, nc (and k with volume elements), then P

@@ -12,13 +12,14 @@
 // leaves of a group and each particle's part of the group record.
 namespace exasph {
 
-// Record header: the candidate leaves as (gap, size) pairs. Leaves come from depth-first
-// walks of the owned tree and then of the halo tree (indices after the owned), so they are
-// ascending; returns false if not.
+// Record header: the number of candidate leaves and whether any of them wraps
+// (CandidateBoxes::wraps: whether some pair of the group may need the minimum image), then the
+// leaves as (gap, size) pairs. Leaves come from depth-first walks of the owned tree and then of
+// the halo tree (indices after the owned), so they are ascending; returns false if not.
 template <class T>
-bool encode_candidates(const std::vector<const OctreeNode<T>*>& candidates,
+bool encode_candidates(const std::vector<const OctreeNode<T>*>& candidates, bool wraps,
                        std::vector<std::uint8_t>& rec) {
-    codec::put_varint(rec, std::uint32_t(candidates.size()));
+    codec::put_varint(rec, std::uint32_t(candidates.size()) << 1 | (wraps ? 1u : 0u));
     std::uint32_t end = 0;
     for (const auto* leaf : candidates) {
         if (leaf->begin < end) return false;

@@ -92,7 +92,9 @@ class NeighbourLists {
 
         void start(std::size_t g) {
             rec_ = nl_.records_[g];
-            ncand_ = codec::get_varint(rec_);
+            const std::uint32_t head = codec::get_varint(rec_);
+            ncand_ = head >> 1;
+            wraps_ = (head & 1u) != 0;
             first_.resize(ncand_);
             size_.resize(ncand_);
             std::uint32_t end = 0;
@@ -125,7 +127,7 @@ class NeighbourLists {
                 }
             }
             rec_ = hits + (pos + 7) / 8;
-            return {out, count};
+            return {out, count, wraps_};
         }
 
       private:
@@ -134,6 +136,7 @@ class NeighbourLists {
         std::vector<std::uint32_t> first_, size_;
         const std::uint8_t* rec_ = nullptr;
         std::uint32_t ncand_ = 0;
+        bool wraps_ = true;
     };
 
     // Frees the lists' memory (their pages go back to the system) until the next build: the
@@ -227,7 +230,9 @@ class NeighbourLists {
                 reads_halos_[g] = candidates.size() > owned_candidates;
                 boxes.assign(candidates, group, image);
                 rec.clear();
-                out_of_order |= !encode_candidates(candidates, rec);
+                const bool wraps = std::find(boxes.wraps.begin(), boxes.wraps.end(),
+                                             (unsigned char)1) != boxes.wraps.end();
+                out_of_order |= !encode_candidates(candidates, wraps, rec);
                 for (std::uint32_t s = group_begin(g); s < group_end(g); ++s) {
                     const std::uint32_t c =
                         encode_neighbours(boxes, p, image, crit, member(s), rec);

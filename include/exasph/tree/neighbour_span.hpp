@@ -26,6 +26,9 @@ struct NeighbourSpan {
 struct ContiguousSpan {
     const std::uint32_t* index;
     std::uint32_t count;
+    // Whether some pair may need the periodic minimum image; false (the search found every
+    // candidate within half a period of the group): no pair does, and loops may skip it.
+    bool wraps = true;
 
     EXASPH_HD EXASPH_INLINE std::uint32_t operator[](std::uint32_t n) const { return index[n]; }
 };
