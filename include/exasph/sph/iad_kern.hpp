@@ -1,9 +1,11 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/iad_avx2.hpp"
 #include "exasph/sph/iad_matrix.hpp"
 #include "exasph/sph/tensile_stress.hpp"
 #include "exasph/tree/neighbour_span.hpp"
@@ -43,17 +45,11 @@ EXASPH_HD StrainRate<T> strain_rate(const VelocityGradient<T>& v) {
         {g[0], T(0.5) * (g[1] + g[3]), T(0.5) * (g[2] + g[6]), g[4], T(0.5) * (g[5] + g[7]), g[8]}};
 }
 
-// The sums of SPEC 5's IAD pass over a's neighbours: tau_a's six moments
-// sum_b V_b d (x) d w(r / h_a) and, with kGrad, D_a's nine sum_b V_b (v_b - v_a) (x) d w (both
-// still to be divided by h_a^3), d = x_b - x_a, V_b = X_b / k_b, or X_b / k_a with kOwnK.
-template <class T>
-struct IadSums {
-    T t[6];
-    T d[9];
-};
+// The sums of SPEC 5's IAD pass (IadSums) over a's neighbours, with V_b = X_b / k_b, or X_b / k_a
+// with kOwnK; kGrad: D_a as well.
 template <bool kGrad, bool kOwnK, class T, class K, class N, class Span>
-EXASPH_HD IadSums<T> iad_sums(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
-                              const Box<T>& box, const KernelView<T>& k, const K* kx) {
+EXASPH_HD IadSums<T> iad_sums_portable(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
+                                       const Box<T>& box, const KernelView<T>& k, const K* kx) {
     const T *x = p[Field::x], *y = p[Field::y], *z = p[Field::z];
     const T *vx = p[Field::vx], *vy = p[Field::vy], *vz = p[Field::vz];
     // Standard SPH carries no X field: X = m, so X_b / k_b = m_b / rho_b.
@@ -64,12 +60,11 @@ EXASPH_HD IadSums<T> iad_sums(std::uint32_t a, Span nb, const ParticleView<T, N>
     T t11 = 0, t12 = 0, t13 = 0, t22 = 0, t23 = 0, t33 = 0;
     T dxx = 0, dxy = 0, dxz = 0, dyx = 0, dyy = 0, dyz = 0, dzx = 0, dzy = 0, dzz = 0;
     // Pairs beyond 2 h_a have W = 0 (KernelPoly is 0 there): no test needed. One kernel
-    // evaluation per pair serves both sums: the polynomial in v^2 that momentum-energy also
-    // evaluates (the same W in C_a and in the gradients it corrects, SPEC 5). Vectorised: with
-    // the contiguous span and the options as template parameters (no select of indices) the
-    // loop runs 10-20 % faster than the scalar one it replaced, and simdlen(8) (as in the
-    // density pass: 8 doubles per step in ymm pairs, no spills) another 10-18 %
-    // (docs/performance.md).
+    // evaluation per pair serves both sums: w at v^2 in N as momentum-energy evaluates it
+    // (KernelView::w_at: the same W in C_a and in the gradients it corrects, SPEC 5). Vectorised:
+    // with the contiguous span and the options as template parameters (no select of indices)
+    // the loop runs 10-20 % faster than the scalar one it replaced, and simdlen(8) (as in the
+    // density pass: 8 doubles per step in ymm pairs) another 10-18 % (docs/performance.md).
     const PeriodicImage<T> image(box);
 #pragma omp simd simdlen(8) \
     reduction(+ : t11, t12, t13, t22, t23, t33, dxx, dxy, dxz, dyx, dyy, dyz, dzx, dzy, dzz)
@@ -79,7 +74,7 @@ EXASPH_HD IadSums<T> iad_sums(std::uint32_t a, Span nb, const ParticleView<T, N>
         const T dy = image(y[b] - y[a], 1);
         const T dz = image(z[b] - z[a], 2);
         const T vol = kOwnK ? xm[b] * inv_ka : xm[b] / T(kx[b]);
-        const T vw = vol * k.w_sq((dx * dx + dy * dy + dz * dz) * inv_h2);
+        const T vw = vol * k.template w_at<N>(squared_norm(dx, dy, dz), inv_h2);
         add_second_moment(t11, t12, t13, t22, t23, t33, dx, dy, dz, vw);
         if constexpr (kGrad) {
             const T wx = (vx[b] - vx[a]) * vw, wy = (vy[b] - vy[a]) * vw, wz = (vz[b] - vz[a]) * vw;
@@ -89,6 +84,19 @@ EXASPH_HD IadSums<T> iad_sums(std::uint32_t a, Span nb, const ParticleView<T, N>
         }
     }
     return {{t11, t12, t13, t22, t23, t33}, {dxx, dxy, dxz, dyx, dyy, dyz, dzx, dzy, dzz}};
+}
+
+// The sums, with AVX2 where the build targets it (sph/iad_avx2.hpp: the portable loop's
+// arithmetic lane for lane).
+template <bool kGrad, bool kOwnK, class T, class K, class N, class Span>
+EXASPH_HD IadSums<T> iad_sums(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
+                              const Box<T>& box, const KernelView<T>& k, const K* kx) {
+#ifdef EXASPH_AVX2_PAIRS
+    if constexpr (!kOwnK && std::is_same_v<T, double> && std::is_same_v<N, float> &&
+                  std::is_same_v<Span, ContiguousSpan>)
+        return avx2::IadPairs<kGrad, K>(a, p, box, k, kx).sum(nb);
+#endif
+    return iad_sums_portable<kGrad, kOwnK>(a, nb, p, box, k, kx);
 }
 
 // SPEC 5, with the volume V_b = X_b / k_b (= m_b / rho_b for standard SPH):

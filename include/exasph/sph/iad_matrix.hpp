@@ -15,6 +15,15 @@ struct IadResult {
     bool singular;
 };
 
+// The sums of SPEC 5's IAD pass over a's neighbours: tau_a's six moments
+// sum_b V_b d (x) d w(r / h_a) and, with the velocity gradient, D_a's nine
+// sum_b V_b (v_b - v_a) (x) d w (both still to be divided by h_a^3), d = x_b - x_a.
+template <class T>
+struct IadSums {
+    T t[6];
+    T d[9];
+};
+
 // Inverse of a symmetric 3x3 matrix by its adjugate. Reports singular when |det| is below a
 // tiny fraction of the scale (trace/3)^3, i.e. when neighbours are too few or coplanar.
 template <class T>
