@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "exasph/kernel/kernel_poly.hpp"
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/util/annotate.hpp"
 
@@ -74,12 +75,15 @@ struct IadMatrixFields {
         : c11(p.narrow(Field::c11)), c12(p.narrow(Field::c12)), c13(p.narrow(Field::c13)),
           c22(p.narrow(Field::c22)), c23(p.narrow(Field::c23)), c33(p.narrow(Field::c33)) {}
 
-    // C_i (x) d, the products in T.
+    // C_i (x) d, the products in T, with explicit multiply-adds: C can be ill-conditioned (few or
+    // one-sided neighbours) and its rows then cancel, so every loop (and the AVX2 one,
+    // sph/momentum_energy_avx2.hpp) rounds them alike.
     template <class T>
     EXASPH_HD EXASPH_INLINE IadProduct<T> times(std::uint32_t i, T dx, T dy, T dz) const {
         const T m11 = c11[i], m12 = c12[i], m13 = c13[i], m22 = c22[i], m23 = c23[i], m33 = c33[i];
-        return {m11 * dx + m12 * dy + m13 * dz, m12 * dx + m22 * dy + m23 * dz,
-                m13 * dx + m23 * dy + m33 * dz};
+        return {mul_add(m13, dz, mul_add(m12, dy, m11 * dx)),
+                mul_add(m23, dz, mul_add(m22, dy, m12 * dx)),
+                mul_add(m33, dz, mul_add(m23, dy, m13 * dx))};
     }
 };
 

@@ -2,10 +2,12 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <type_traits>
 
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/sph/iad_kern.hpp"
+#include "exasph/sph/momentum_energy_avx2.hpp"
 #include "exasph/sph/pair_dissipation.hpp"
 #include "exasph/sph/tensile_stress.hpp"
 #include "exasph/sph/timestep.hpp"
@@ -40,8 +42,8 @@ struct MomentumEnergyResult {
 template <class T, PairTerms kTerms = PairTerms::any, bool kAlphaField = true,
           bool kVolumeElements = true, class N, class Span>
 EXASPH_HD MomentumEnergyResult<T>
-momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, const Box<T>& box,
-                     const KernelView<T>& k, const Dissipation<T>& diss = {}) {
+momentum_energy_portable(std::uint32_t a, Span nb, const ParticleView<T, N>& p, const Box<T>& box,
+                         const KernelView<T>& k, const Dissipation<T>& diss = {}) {
     constexpr bool kExtras = kTerms != PairTerms::plain;
     constexpr bool kLimited = kTerms == PairTerms::limited; // the limiter on, no stress
     const T alpha_u = diss.alpha_u;
@@ -189,6 +191,25 @@ momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, cons
         }
     }
     return {ax, ay, az, pa * du_p + ra * du_ts + T(0.25) * du_av + du_cond, vsig_max, divv};
+}
+
+// The pass's sums, with AVX2 for the plain form (standard SPH, constant alpha) where the build
+// targets it (sph/momentum_energy_avx2.hpp: the same terms, in the same order per pair).
+template <class T, PairTerms kTerms = PairTerms::any, bool kAlphaField = true,
+          bool kVolumeElements = true, class N, class Span>
+EXASPH_HD MomentumEnergyResult<T>
+momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, const Box<T>& box,
+                     const KernelView<T>& k, const Dissipation<T>& diss = {}) {
+#ifdef EXASPH_AVX2_PAIRS
+    if constexpr (kTerms == PairTerms::plain && !kAlphaField && !kVolumeElements &&
+                  std::is_same_v<T, double> && std::is_same_v<N, float> &&
+                  std::is_same_v<Span, ContiguousSpan>) {
+        const auto s = avx2::MomentumEnergyPlain(a, p, box, k, diss.alpha).sum(nb);
+        return {s.ax, s.ay, s.az, s.du, s.vsig_max, T(0)};
+    }
+#endif
+    return momentum_energy_portable<T, kTerms, kAlphaField, kVolumeElements>(a, nb, p, box, k,
+                                                                             diss);
 }
 
 // The momentum-energy pass of one particle: a, du/dt (and div v for the AV switch) stored;

@@ -291,3 +291,60 @@ TEST(IadPairs, DispatchedLoopMatchesThePortableOne) {
         EXPECT_GT(checked, s.ps.size());
     }
 }
+
+// The momentum-energy sums of the std scheme's form (constant alpha, no options) through
+// momentum_energy_kern (the AVX2 loop where the build targets it) against the portable loop, on
+// random particles, velocities and internal energies after real density and IAD passes, in a
+// periodic and an open box, for every list prefix of some particles.
+TEST(MomentumEnergyPairs, DispatchedLoopMatchesThePortableOne) {
+    for (const bool periodic : {true, false}) {
+        Prepared s;
+        s.box = testref::unit_box(periodic);
+        s.ps = testref::random_cube(5000, 13, 0.05, 0.09);
+        std::mt19937_64 rng(9);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        for (std::size_t i = 0; i < s.ps.size(); ++i) {
+            s.ps[Field::m][i] = 2e-4 * (1.0 + 0.01 * double(i % 5));
+            s.ps[Field::u][i] = 1.0 + 0.5 * u(rng);
+            for (Field f : {Field::vx, Field::vy, Field::vz}) s.ps[f][i] = u(rng);
+        }
+        prepare(s);
+        const auto& k = testref::sinc6();
+        compute_density(s.ps, s.nl, s.box, k.view());
+        compute_iad(s.ps, s.nl, s.box, k.view());
+        const auto view = make_view(s.ps);
+        Dissipation<double> diss;
+        diss.alpha = 0.8;
+        NeighbourLists<double>::Decoder dec(s.nl);
+        std::size_t checked = 0;
+        for (std::size_t g = 0; g < s.nl.num_groups(); ++g) {
+            dec.start(g);
+            for (std::uint32_t slot = s.nl.group_begin(g); slot < s.nl.group_end(g); ++slot) {
+                const std::uint32_t a = s.nl.member(slot);
+                const ContiguousSpan nb = dec.next();
+                // The sums' round-off scale: the pair terms' magnitudes (they cancel in the sums).
+                double a_scale = 1e-300, du_scale = 1e-300;
+                for (std::uint32_t j = 0; j < nb.count; ++j) {
+                    const auto t = momentum_energy_portable<double, PairTerms::plain, false, false>(
+                        a, ContiguousSpan{nb.index + j, 1, nb.wraps}, view, s.box, k.view(), diss);
+                    a_scale += std::abs(t.ax) + std::abs(t.ay) + std::abs(t.az);
+                    du_scale += std::abs(t.du);
+                }
+                const std::uint32_t first = a % 50 == 0 ? 0 : nb.count;
+                for (std::uint32_t len = first; len <= nb.count; ++len, ++checked) {
+                    const ContiguousSpan part{nb.index, len, nb.wraps};
+                    const auto f = momentum_energy_kern<double, PairTerms::plain, false, false>(
+                        a, part, view, s.box, k.view(), diss);
+                    const auto r = momentum_energy_portable<double, PairTerms::plain, false, false>(
+                        a, part, view, s.box, k.view(), diss);
+                    ASSERT_NEAR(f.ax, r.ax, 1e-14 * a_scale) << a << " " << len;
+                    ASSERT_NEAR(f.ay, r.ay, 1e-14 * a_scale) << a << " " << len;
+                    ASSERT_NEAR(f.az, r.az, 1e-14 * a_scale) << a << " " << len;
+                    ASSERT_NEAR(f.du, r.du, 1e-14 * du_scale) << a << " " << len;
+                    ASSERT_NEAR(f.vsig_max, r.vsig_max, 1e-13 * r.vsig_max) << a << " " << len;
+                }
+            }
+        }
+        EXPECT_GT(checked, s.ps.size());
+    }
+}
