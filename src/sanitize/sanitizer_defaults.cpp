@@ -22,7 +22,9 @@ const char* __asan_default_options() {
 // the OpenMPI components kept loaded above and crashed at exit (signal 11 at a near-null
 // address) in every program that initialises MPI. exasph keeps no heap memory reachable only
 // from thread-local storage, so no real leak hides behind this.
-const char* __lsan_default_options() { return "use_tls=0"; }
+const char* __lsan_default_options() {
+    return "use_tls=0";
+}
 
 // OpenMPI, its runtime and HDF5 keep allocations for the life of the process (freed by the OS):
 // not exasph's leaks.
