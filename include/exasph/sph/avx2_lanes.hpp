@@ -66,6 +66,22 @@ EXASPH_INLINE std::int32_t horizontal_sum(__m256i v) {
     return _mm_cvtsi128_si32(s);
 }
 
+// Runs step(indices, valid) over a list eight pairs at a time; `valid` (32-bit lanes: -1 or 0)
+// marks the lanes that hold a pair. The last 1-7 pairs form one step whose empty lanes hold
+// `self` (a's own index: a valid read, masked off by the loops), instead of a scalar remainder.
+template <class Step>
+EXASPH_INLINE void for_each_eight(const std::uint32_t* index, std::uint32_t count,
+                                  std::uint32_t self, Step&& step) {
+    std::uint32_t n = 0;
+    for (; n + 8 <= count; n += 8) step(index + n, _mm256_set1_epi32(-1));
+    if (n == count) return;
+    const std::uint32_t left = count - n;
+    std::uint32_t idx[8];
+    for (std::uint32_t j = 0; j < 8; ++j) idx[j] = j < left ? index[n + j] : self;
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    step(idx, _mm256_cmpgt_epi32(_mm256_set1_epi32(int(left)), lane));
+}
+
 // The powers of t = min(s, 4)/2 - 1 that KernelPoly's Estrin scheme uses, shared by the
 // polynomials evaluated at one s.
 struct PolyPowers {

@@ -55,18 +55,8 @@ class DensityPairs {
     template <bool kWrap>
     DensitySums sum(ContiguousSpan nb) const {
         Lanes acc;
-        std::uint32_t n = 0;
-        const __m256 all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
-        for (; n + 8 <= nb.count; n += 8) add8<kWrap>(nb.index + n, all, acc);
-        if (n < nb.count) { // the last 1-7 pairs: a's own index in the empty lanes, masked off
-            const std::uint32_t left = nb.count - n;
-            std::uint32_t idx[8];
-            for (std::uint32_t j = 0; j < 8; ++j) idx[j] = j < left ? nb.index[n + j] : a_;
-            const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-            add8<kWrap>(idx,
-                        _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(int(left)), lane)),
-                        acc);
-        }
+        for_each_eight(nb.index, nb.count, a_,
+                       [&](const std::uint32_t* i, __m256i valid) { add8<kWrap>(i, valid, acc); });
         DensitySums s;
         s.k = horizontal_sum(_mm256_add_pd(acc.k[0], acc.k[1]));
         s.dh = horizontal_sum(_mm256_add_pd(acc.dh[0], acc.dh[1]));
@@ -91,7 +81,8 @@ class DensityPairs {
 
     // Eight pairs; `valid` masks the lanes that hold one.
     template <bool kWrap>
-    EXASPH_INLINE void add8(const std::uint32_t* i, __m256 valid, Lanes& acc) const {
+    EXASPH_INLINE void add8(const std::uint32_t* i, __m256i valid_lanes, Lanes& acc) const {
+        const __m256 valid = _mm256_castsi256_ps(valid_lanes);
         const __m256 s = join(v2<kWrap>(i), v2<kWrap>(i + 4));
         const __m256 inside =
             _mm256_and_ps(_mm256_cmp_ps(s, _mm256_set1_ps(4.0f), _CMP_LT_OQ), valid);

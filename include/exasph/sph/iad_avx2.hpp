@@ -65,18 +65,8 @@ class IadPairs {
     template <bool kWrap>
     IadSums<double> sum(ContiguousSpan nb) const {
         Lanes acc;
-        std::uint32_t n = 0;
-        const __m256 all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
-        for (; n + 8 <= nb.count; n += 8) add8<kWrap>(nb.index + n, all, acc);
-        if (n < nb.count) { // the last 1-7 pairs: a's own index in the empty lanes, masked off
-            const std::uint32_t left = nb.count - n;
-            std::uint32_t idx[8];
-            for (std::uint32_t j = 0; j < 8; ++j) idx[j] = j < left ? nb.index[n + j] : a_;
-            const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-            add8<kWrap>(idx,
-                        _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(int(left)), lane)),
-                        acc);
-        }
+        for_each_eight(nb.index, nb.count, a_,
+                       [&](const std::uint32_t* i, __m256i valid) { add8<kWrap>(i, valid, acc); });
         IadSums<double> s{};
         for (int c = 0; c < 6; ++c) s.t[c] = horizontal_sum(acc.t[c]);
         if constexpr (kGrad)
@@ -92,7 +82,8 @@ class IadPairs {
 
     // Eight pairs; `valid` masks the lanes that hold one.
     template <bool kWrap>
-    EXASPH_INLINE void add8(const std::uint32_t* i, __m256 valid, Lanes& acc) const {
+    EXASPH_INLINE void add8(const std::uint32_t* i, __m256i valid_lanes, Lanes& acc) const {
+        const __m256 valid = _mm256_castsi256_ps(valid_lanes);
         __m256d d[2][3];
         __m128 s[2];
         for (int h = 0; h < 2; ++h) {

@@ -79,16 +79,8 @@ class MomentumEnergyPlain {
     template <bool kWrap>
     MomentumEnergySums sum(ContiguousSpan nb) const {
         Lanes acc;
-        std::uint32_t n = 0;
-        const __m256i all = _mm256_set1_epi32(-1);
-        for (; n + 8 <= nb.count; n += 8) add8<kWrap>(nb.index + n, all, acc);
-        if (n < nb.count) { // the last 1-7 pairs: a's own index in the empty lanes, masked off
-            const std::uint32_t left = nb.count - n;
-            std::uint32_t idx[8];
-            for (std::uint32_t j = 0; j < 8; ++j) idx[j] = j < left ? nb.index[n + j] : a_;
-            const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-            add8<kWrap>(idx, _mm256_cmpgt_epi32(_mm256_set1_epi32(int(left)), lane), acc);
-        }
+        for_each_eight(nb.index, nb.count, a_,
+                       [&](const std::uint32_t* i, __m256i valid) { add8<kWrap>(i, valid, acc); });
         return {horizontal_sum(acc.ax), horizontal_sum(acc.ay), horizontal_sum(acc.az),
                 pa_ * horizontal_sum(acc.du_p) + 0.25 * horizontal_sum(acc.du_av),
                 horizontal_max(acc.vsig_max)};

@@ -31,6 +31,30 @@ void prepare(Prepared& s) {
     s.nl.build(s.tree, sv, s.box, NeighbourCriterion::symmetric, std::uint32_t(s.ps.size()));
 }
 
+// Decodes every particle's list: on_list(a, list) once per particle, then on_prefix(a, part) for
+// the whole list and, for one particle in 50, every prefix of it (every remainder of the vector
+// loops). Stops at the first fatal failure; returns the prefixes checked.
+template <class OnList, class OnPrefix>
+std::size_t for_each_list_prefix(const NeighbourLists<double>& nl, OnList&& on_list,
+                                 OnPrefix&& on_prefix) {
+    NeighbourLists<double>::Decoder dec(nl);
+    std::size_t checked = 0;
+    for (std::size_t g = 0; g < nl.num_groups(); ++g) {
+        dec.start(g);
+        for (std::uint32_t slot = nl.group_begin(g); slot < nl.group_end(g); ++slot) {
+            const std::uint32_t a = nl.member(slot);
+            const ContiguousSpan nb = dec.next();
+            on_list(a, nb);
+            const std::uint32_t first = a % 50 == 0 ? 0 : nb.count;
+            for (std::uint32_t len = first; len <= nb.count; ++len, ++checked) {
+                on_prefix(a, ContiguousSpan{nb.index, len, nb.wraps});
+                if (::testing::Test::HasFatalFailure()) return checked;
+            }
+        }
+    }
+    return checked;
+}
+
 } // namespace
 
 class LatticeDensity : public ::testing::TestWithParam<double> {};
@@ -203,27 +227,16 @@ TEST(DensityPairs, DispatchedLoopMatchesThePortableOne) {
         prepare(s);
         const auto& k = testref::sinc6();
         const auto view = make_view(s.ps);
-        NeighbourLists<double>::Decoder dec(s.nl);
-        std::size_t skipped = 0, checked = 0;
-        for (std::size_t g = 0; g < s.nl.num_groups(); ++g) {
-            dec.start(g);
-            for (std::uint32_t slot = s.nl.group_begin(g); slot < s.nl.group_end(g); ++slot) {
-                const std::uint32_t a = s.nl.member(slot);
-                const ContiguousSpan nb = dec.next();
-                skipped += !nb.wraps;
-                // Every prefix for one particle in 50, the whole list for the others.
-                const std::uint32_t first = a % 50 == 0 ? 0 : nb.count;
-                for (std::uint32_t len = first; len <= nb.count; ++len, ++checked) {
-                    const ContiguousSpan part{nb.index, len, nb.wraps};
-                    const auto fast = density_pairs(a, part, view, s.box, k.view(), 1.0, 3.0);
-                    const auto ref =
-                        density_pairs_portable(a, part, view, s.box, k.view(), 1.0, 3.0);
-                    ASSERT_NEAR(fast.k, ref.k, 1e-13 * std::abs(ref.k)) << a << " " << len;
-                    ASSERT_NEAR(fast.dh, ref.dh, 1e-12 * std::abs(ref.k)) << a << " " << len;
-                    ASSERT_EQ(fast.nc, ref.nc) << a << " " << len;
-                }
-            }
-        }
+        std::size_t skipped = 0;
+        const std::size_t checked = for_each_list_prefix(
+            s.nl, [&](std::uint32_t, ContiguousSpan nb) { skipped += !nb.wraps; },
+            [&](std::uint32_t a, ContiguousSpan part) {
+                const auto fast = density_pairs(a, part, view, s.box, k.view(), 1.0, 3.0);
+                const auto ref = density_pairs_portable(a, part, view, s.box, k.view(), 1.0, 3.0);
+                ASSERT_NEAR(fast.k, ref.k, 1e-13 * std::abs(ref.k)) << a << " " << part.count;
+                ASSERT_NEAR(fast.dh, ref.dh, 1e-12 * std::abs(ref.k)) << a << " " << part.count;
+                ASSERT_EQ(fast.nc, ref.nc) << a << " " << part.count;
+            });
         EXPECT_GT(checked, s.ps.size());
         // An open box never needs the image; a periodic one does near its faces only.
         if (periodic) {
@@ -266,28 +279,17 @@ TEST(IadPairs, DispatchedLoopMatchesThePortableOne) {
                 if (!(std::abs(f.d[c] - r.d[c]) <= 1e-12 * scale)) return false;
             return true;
         };
-        NeighbourLists<double>::Decoder dec(s.nl);
-        std::size_t checked = 0;
-        for (std::size_t g = 0; g < s.nl.num_groups(); ++g) {
-            dec.start(g);
-            for (std::uint32_t slot = s.nl.group_begin(g); slot < s.nl.group_end(g); ++slot) {
-                const std::uint32_t a = s.nl.member(slot);
-                const ContiguousSpan nb = dec.next();
-                const std::uint32_t first = a % 50 == 0 ? 0 : nb.count;
-                for (std::uint32_t len = first; len <= nb.count; ++len, ++checked) {
-                    const ContiguousSpan part{nb.index, len, nb.wraps};
-                    const auto kb = k.view();
-                    ASSERT_TRUE(same(iad_sums<false, false>(a, part, view, s.box, kb, rho),
-                                     iad_sums_portable<false, false>(a, part, view, s.box, kb, rho),
-                                     0))
-                        << a << " " << len;
-                    ASSERT_TRUE(same(iad_sums<true, false>(a, part, view, s.box, kb, kd),
-                                     iad_sums_portable<true, false>(a, part, view, s.box, kb, kd),
-                                     9))
-                        << a << " " << len;
-                }
-            }
-        }
+        const auto kb = k.view();
+        const std::size_t checked = for_each_list_prefix(
+            s.nl, [](std::uint32_t, ContiguousSpan) {},
+            [&](std::uint32_t a, ContiguousSpan part) {
+                ASSERT_TRUE(same(iad_sums<false, false>(a, part, view, s.box, kb, rho),
+                                 iad_sums_portable<false, false>(a, part, view, s.box, kb, rho), 0))
+                    << a << " " << part.count;
+                ASSERT_TRUE(same(iad_sums<true, false>(a, part, view, s.box, kb, kd),
+                                 iad_sums_portable<true, false>(a, part, view, s.box, kb, kd), 9))
+                    << a << " " << part.count;
+            });
         EXPECT_GT(checked, s.ps.size());
     }
 }
@@ -315,36 +317,30 @@ TEST(MomentumEnergyPairs, DispatchedLoopMatchesThePortableOne) {
         const auto view = make_view(s.ps);
         Dissipation<double> diss;
         diss.alpha = 0.8;
-        NeighbourLists<double>::Decoder dec(s.nl);
-        std::size_t checked = 0;
-        for (std::size_t g = 0; g < s.nl.num_groups(); ++g) {
-            dec.start(g);
-            for (std::uint32_t slot = s.nl.group_begin(g); slot < s.nl.group_end(g); ++slot) {
-                const std::uint32_t a = s.nl.member(slot);
-                const ContiguousSpan nb = dec.next();
-                // The sums' round-off scale: the pair terms' magnitudes (they cancel in the sums).
-                double a_scale = 1e-300, du_scale = 1e-300;
-                for (std::uint32_t j = 0; j < nb.count; ++j) {
-                    const auto t = momentum_energy_portable<double, PairTerms::plain, false, false>(
-                        a, ContiguousSpan{nb.index + j, 1, nb.wraps}, view, s.box, k.view(), diss);
-                    a_scale += std::abs(t.ax) + std::abs(t.ay) + std::abs(t.az);
-                    du_scale += std::abs(t.du);
-                }
-                const std::uint32_t first = a % 50 == 0 ? 0 : nb.count;
-                for (std::uint32_t len = first; len <= nb.count; ++len, ++checked) {
-                    const ContiguousSpan part{nb.index, len, nb.wraps};
-                    const auto f = momentum_energy_kern<double, PairTerms::plain, false, false>(
-                        a, part, view, s.box, k.view(), diss);
-                    const auto r = momentum_energy_portable<double, PairTerms::plain, false, false>(
-                        a, part, view, s.box, k.view(), diss);
-                    ASSERT_NEAR(f.ax, r.ax, 1e-14 * a_scale) << a << " " << len;
-                    ASSERT_NEAR(f.ay, r.ay, 1e-14 * a_scale) << a << " " << len;
-                    ASSERT_NEAR(f.az, r.az, 1e-14 * a_scale) << a << " " << len;
-                    ASSERT_NEAR(f.du, r.du, 1e-14 * du_scale) << a << " " << len;
-                    ASSERT_NEAR(f.vsig_max, r.vsig_max, 1e-13 * r.vsig_max) << a << " " << len;
-                }
+        constexpr auto kPlain = PairTerms::plain;
+        // The sums' round-off scale: the pair terms' magnitudes (they cancel in the sums).
+        double a_scale = 0, du_scale = 0;
+        auto scale = [&](std::uint32_t a, ContiguousSpan nb) {
+            a_scale = du_scale = 1e-300;
+            for (std::uint32_t j = 0; j < nb.count; ++j) {
+                const auto t = momentum_energy_portable<double, kPlain, false, false>(
+                    a, ContiguousSpan{nb.index + j, 1, nb.wraps}, view, s.box, k.view(), diss);
+                a_scale += std::abs(t.ax) + std::abs(t.ay) + std::abs(t.az);
+                du_scale += std::abs(t.du);
             }
-        }
+        };
+        const std::size_t checked =
+            for_each_list_prefix(s.nl, scale, [&](std::uint32_t a, ContiguousSpan part) {
+                const auto f = momentum_energy_kern<double, kPlain, false, false>(
+                    a, part, view, s.box, k.view(), diss);
+                const auto r = momentum_energy_portable<double, kPlain, false, false>(
+                    a, part, view, s.box, k.view(), diss);
+                ASSERT_NEAR(f.ax, r.ax, 1e-14 * a_scale) << a << " " << part.count;
+                ASSERT_NEAR(f.ay, r.ay, 1e-14 * a_scale) << a << " " << part.count;
+                ASSERT_NEAR(f.az, r.az, 1e-14 * a_scale) << a << " " << part.count;
+                ASSERT_NEAR(f.du, r.du, 1e-14 * du_scale) << a << " " << part.count;
+                ASSERT_NEAR(f.vsig_max, r.vsig_max, 1e-13 * r.vsig_max) << a << " " << part.count;
+            });
         EXPECT_GT(checked, s.ps.size());
     }
 }
