@@ -51,7 +51,8 @@ namespace exasph {
     EXASPH_CUDA_NEIGHBOURS(SofteningZetaKernel<double, N>)                                         \
     EXASPH_CUDA_NEIGHBOURS(SofteningForceKernel<double, N>)                                        \
     EXASPH_CUDA_MOMENTUM(N)                                                                        \
-    EXASPH_CUDA_FOR_EACH(StateUpdateKernel<double, N>)                                             \
+    EXASPH_CUDA_FOR_EACH(PressAxisKernel<double, N>)                                               \
+    EXASPH_CUDA_FOR_EACH(EnergyUpdateKernel<double, N>)                                            \
     EXASPH_CUDA_FOR_EACH_IN(SmoothingLengthKernel<double, N>)                                      \
     EXASPH_CUDA_FOR_EACH_IN(ViscosityKernel<double, N>)                                            \
     EXASPH_CUDA_FOR_EACH_IN(VolumeWeightKernel<double, N>)                                         \

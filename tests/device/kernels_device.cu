@@ -53,7 +53,8 @@ void instantiate(ParticleView<T> p, Box<T> box, KernelView<T> kv, const std::uin
     neighbour_pass<<<1, 32>>>(
         MomentumEnergyKernel<T, Terms::plain, false, false>{p, box, kv, d, T(0.2)}, lists, 8, 32,
         out);
-    particle_pass<<<1, 32>>>(StateUpdateKernel<T>{p, box, T(1), T(1)}, 32, out);
+    particle_pass<<<1, 32>>>(PressAxisKernel<T>{p, box, T(1), T(1), 0}, 32, out);
+    particle_pass<<<1, 32>>>(EnergyUpdateKernel<T>{p, T(1), T(1)}, 32, out);
     particle_pass<<<1, 32>>>(SmoothingLengthKernel<T>{p, T(100)}, 32, out);
     particle_pass<<<1, 32>>>(ViscosityKernel<T>{p, T(1), T(0.05), T(1), T(0.2)}, 32, out);
     particle_pass<<<1, 32>>>(VolumeWeightKernel<T>{p}, 32, out);

@@ -138,12 +138,15 @@ void add_softening_correction(ParticleSet<T>& ps, const Lists& nl, const KernelV
     });
 }
 
-// SPEC 7: positions, velocities and u of the first n particles (StateUpdateKernel).
+// SPEC 7: positions, velocities and u of the first n particles, one axis at a time
+// (PressAxisKernel), then u (EnergyUpdateKernel).
 template <class L = DefaultLauncher, class T>
 void update_state(ParticleSet<T>& ps, std::size_t n, const Box<T>& box, double dt, double dt_m1) {
     with_view(ps, [&](auto p) {
-        L::for_each(
-            n, StateUpdateKernel<T, typename decltype(p)::narrow_type>{p, box, T(dt), T(dt_m1)});
+        using N = typename decltype(p)::narrow_type;
+        for (int axis = 0; axis < 3; ++axis)
+            L::for_each(n, PressAxisKernel<T, N>{p, box, T(dt), T(dt_m1), axis});
+        L::for_each(n, EnergyUpdateKernel<T, N>{p, T(dt), T(dt_m1)});
     });
 }
 

