@@ -14,3 +14,10 @@
 #else
 #define EXASPH_INLINE inline
 #endif
+
+// Keeps a function out of its callers' loops (where inlining costs the loop registers).
+#if defined(__GNUC__) || defined(__clang__)
+#define EXASPH_NOINLINE __attribute__((noinline))
+#else
+#define EXASPH_NOINLINE
+#endif
