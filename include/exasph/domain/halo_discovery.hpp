@@ -7,6 +7,7 @@
 #include "exasph/domain/global_tree.hpp"
 #include "exasph/domain/halo_exchange.hpp"
 #include "exasph/tree/octree.hpp"
+#include "exasph/util/box.hpp"
 #include "exasph/util/error.hpp"
 
 namespace exasph {
@@ -90,15 +91,8 @@ class LeafIndex {
         }
     }
 
-    // The reach test of query() for the point p with smoothing length ph and one leaf: a
-    // particle's own test against the leaves its group's query found.
-    bool reaches(const T p[3], T ph, std::uint32_t leaf, const Box<T>& box) const {
-        const T llo[3] = {lo_[0][leaf], lo_[1][leaf], lo_[2][leaf]};
-        const T lhi[3] = {hi_[0][leaf], hi_[1][leaf], hi_[2][leaf]};
-        return within_reach(p, p, llo, lhi, std::max(ph, hmax_[leaf]), skin_, box);
-    }
-
     int owner(std::uint32_t leaf) const { return owner_[leaf]; }
+    T skin() const { return skin_; }
     T hmax(std::uint32_t leaf) const { return hmax_[leaf]; }
     void cell(std::uint32_t leaf, T lo[3], T hi[3]) const {
         for (int d = 0; d < 3; ++d) {
@@ -121,6 +115,52 @@ class LeafIndex {
     std::vector<int> owner_;
     std::vector<int> node_owner_;
     Octree<T> tree_;
+};
+
+// The foreign leaves within reach of one local group (LeafIndex::query on its box), as arrays
+// (centre, half-width, hmax, owner), so that one vectorised loop applies query()'s reach test
+// (LeafIndex::within_reach for a point: the same arithmetic) to a member particle and all of
+// them at once.
+template <class T>
+struct NearLeaves {
+    std::vector<T> c[3], e[3], hmax;
+    std::vector<int> owner;
+    std::vector<unsigned char> hit;
+
+    std::size_t size() const { return owner.size(); }
+    void clear() {
+        for (int d = 0; d < 3; ++d) c[d].clear(), e[d].clear();
+        hmax.clear();
+        owner.clear();
+    }
+    void add(const LeafIndex<T>& index, std::uint32_t leaf) {
+        T lo[3], hi[3];
+        index.cell(leaf, lo, hi);
+        for (int d = 0; d < 3; ++d) {
+            c[d].push_back(T(0.5) * (lo[d] + hi[d]));
+            e[d].push_back(T(0.5) * (hi[d] - lo[d]));
+        }
+        hmax.push_back(index.hmax(leaf));
+        owner.push_back(index.owner(leaf));
+    }
+    // hit[k]: leaf k within reach of the point p with smoothing length ph.
+    const unsigned char* reached(const T p[3], T ph, T skin, const PeriodicImage<T>& im) {
+        const std::size_t n = size();
+        hit.resize(n);
+        const T *cx = c[0].data(), *cy = c[1].data(), *cz = c[2].data();
+        const T *ex = e[0].data(), *ey = e[1].data(), *ez = e[2].data();
+        const T* hm = hmax.data();
+        unsigned char* out = hit.data();
+#pragma omp simd
+        for (std::size_t k = 0; k < n; ++k) {
+            const T gx = std::max(T(0), std::abs(im(p[0] - cx[k], 0)) - ex[k]);
+            const T gy = std::max(T(0), std::abs(im(p[1] - cy[k], 1)) - ey[k]);
+            const T gz = std::max(T(0), std::abs(im(p[2] - cz[k], 2)) - ez[k]);
+            const T reach = (T(2) * std::max(ph, hm[k]) + skin) * T(1 + kHaloSlack);
+            out[k] = gx * gx + gy * gy + gz * gz < reach * reach;
+        }
+        return out;
+    }
 };
 
 // Ranks that exchange halos with `me`: owners of leaves within reach of one of my leaves. The
@@ -160,21 +200,22 @@ void plan_halo_sends(HaloPlan& plan, const LeafIndex<T>& index, const Octree<T>&
     bool unknown_partner = false;
 #pragma omp parallel reduction(|| : unknown_partner)
     {
-        std::vector<std::uint32_t> near; // the foreign leaves within reach of the group
+        NearLeaves<T> near;
+        const PeriodicImage<T> im(box);
 #pragma omp for schedule(dynamic, 4)
         for (std::size_t g = 0; g < leaves.size(); ++g) {
             const auto& nd = local.nodes()[leaves[g]];
             near.clear();
             index.query(nd.lo, nd.hi, nd.hmax, me, box,
-                        [&](std::uint32_t l) { near.push_back(l); });
-            for (std::uint32_t i = nd.begin; i < nd.end && !near.empty(); ++i) {
+                        [&](std::uint32_t l) { near.add(index, l); });
+            for (std::uint32_t i = nd.begin; i < nd.end && near.size() > 0; ++i) {
                 const T p[3] = {x[i], y[i], z[i]};
+                const unsigned char* hit = near.reached(p, h[i], index.skin(), im);
                 int ranks[64];
                 int nr = 0;
-                for (std::uint32_t l : near) {
-                    if (!index.reaches(p, h[i], l, box)) continue;
-                    const int o = index.owner(l);
-                    if (std::find(ranks, ranks + nr, o) != ranks + nr) continue;
+                for (std::size_t k = 0; k < near.size(); ++k) {
+                    const int o = near.owner[k];
+                    if (!hit[k] || std::find(ranks, ranks + nr, o) != ranks + nr) continue;
                     if (nr < 64)
                         ranks[nr++] = o;
                     else
