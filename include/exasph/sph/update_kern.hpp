@@ -16,8 +16,8 @@ namespace exasph {
 
 // SPEC 7: Press scheme for x and v along one axis, with the periodic wrap of x and x_{n-1}. The
 // update runs one axis at a time, and the energy apart (EnergyUpdateKernel): four arrays per loop
-// instead of eleven, which the hardware prefetchers follow (all in one loop, the update of Sedov
-// 125k took 10 ms per step on 2 Zen 2 cores, mostly waiting for memory; split, 3.5 ms).
+// instead of eleven, which the hardware prefetchers follow (all in one loop, the update phase of
+// Sedov 125k took 11.5 ms per step on 2 Zen 2 cores, mostly waiting for memory; split, 4.3 ms).
 template <class T, class N = float>
 struct PressAxisKernel {
     ParticleView<T, N> p;
