@@ -85,12 +85,11 @@ EXASPH_INLINE void for_each_eight(const std::uint32_t* index, std::uint32_t coun
 // The powers of t = min(s, 4)/2 - 1 that KernelPoly's Estrin scheme uses, shared by the
 // polynomials evaluated at one s.
 struct PolyPowers {
-    __m256 t, t2, t4, t8, t16;
+    __m256 t, t2, t4, t8;
     EXASPH_INLINE explicit PolyPowers(__m256 s) {
         t = _mm256_fmadd_ps(_mm256_min_ps(s, _mm256_set1_ps(4.0f)), _mm256_set1_ps(0.5f),
                             _mm256_set1_ps(-1.0f)); // min returns 4 for a NaN s, as the scalar
-        t2 = _mm256_mul_ps(t, t), t4 = _mm256_mul_ps(t2, t2);
-        t8 = _mm256_mul_ps(t4, t4), t16 = _mm256_mul_ps(t8, t8);
+        t2 = _mm256_mul_ps(t, t), t4 = _mm256_mul_ps(t2, t2), t8 = _mm256_mul_ps(t4, t4);
     }
 };
 
@@ -98,23 +97,22 @@ struct PolyPowers {
 // the multiply-adds read them from memory (a broadcast per coefficient and pair step was a fifth
 // of the density loop's instructions).
 struct PolyLanes {
-    __m256 c[kPolyTerms];
+    static constexpr int kTerms = KernelPoly<float>::kTerms;
+    __m256 c[kTerms];
     explicit PolyLanes(const KernelPoly<float>& k) {
-        for (int i = 0; i < kPolyTerms; ++i) c[i] = _mm256_set1_ps(k.c[i]);
+        for (int i = 0; i < kTerms; ++i) c[i] = _mm256_set1_ps(k.c[i]);
     }
     // KernelPoly<float>::operator() before its factor (s < 4), in the same order of fused
     // multiply-adds, so every lane rounds as the scalar evaluation does.
     EXASPH_INLINE __m256 operator()(const PolyPowers& w) const {
-        static_assert(kPolyTerms == 21, "written out for 21 terms, as KernelPoly");
+        static_assert(kTerms == 16, "written out for 16 terms, as KernelPoly<float>");
         auto pair = [&](int i) { return _mm256_fmadd_ps(c[i + 1], w.t, c[i]); };
         const __m256 q0 = _mm256_fmadd_ps(pair(2), w.t2, pair(0));
         const __m256 q1 = _mm256_fmadd_ps(pair(6), w.t2, pair(4));
         const __m256 q2 = _mm256_fmadd_ps(pair(10), w.t2, pair(8));
         const __m256 q3 = _mm256_fmadd_ps(pair(14), w.t2, pair(12));
-        const __m256 q4 = _mm256_fmadd_ps(pair(18), w.t2, pair(16));
         const __m256 o0 = _mm256_fmadd_ps(q1, w.t4, q0), o1 = _mm256_fmadd_ps(q3, w.t4, q2);
-        const __m256 o2 = _mm256_fmadd_ps(c[20], w.t4, q4);
-        return _mm256_fmadd_ps(o2, w.t16, _mm256_fmadd_ps(o1, w.t8, o0));
+        return _mm256_fmadd_ps(o1, w.t8, o0);
     }
 };
 

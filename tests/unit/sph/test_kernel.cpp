@@ -110,13 +110,16 @@ TEST(SincKernelPolynomial, NonIntegerAndLargestExponentsWithinTheTablesBound) {
     }
 }
 
-// The single-precision copies that the density pass evaluates with float derived fields,
-// at the float v^2 the pass computes. Float arithmetic itself sets the error: t = v^2/2 - 1
-// rounds by up to 6e-8, which moves the value by |d/dt| times that (steeper for the grad-h
-// term than for w), plus the evaluation's roundings: measured 9.6e-7 (n = 4), 1.4e-6 (6) and
-// 1.7e-6 (8) of w(0), mostly in the grad-h term; w alone 3e-7.
+// The single-precision copies that the pair loops evaluate with float derived fields (16
+// terms), at the float v^2 the passes compute. For n <= 9 float arithmetic itself sets the
+// error: t = v^2/2 - 1 rounds by up to 6e-8, which moves the value by |d/dt| times that
+// (steeper for the grad-h term than for w), plus the evaluation's roundings: measured 1.0e-6
+// (n = 4), 1.3e-6 (6) and 1.6e-6 (8) of w(0), mostly in the grad-h term; w alone 3e-7 (with 21
+// terms: 9.6e-7, 1.4e-6, 1.7e-6). Beyond, the degree-15 interpolant's own error takes over:
+// 4.0e-6 for n = 10 and 2.6e-5 for n = 12 (21 terms: 2.1e-6, 2.5e-6), still far below the
+// kernel's discretisation error.
 TEST(SincKernelPolynomial, SinglePrecisionWithinFloatRoundOff) {
-    for (double n : {4.0, 6.0, 8.0}) {
+    for (double n : {4.0, 6.0, 8.0, 10.0, 12.0}) {
         KernelTable<double> k(sinc_kernel(n));
         const auto view = k.view();
         const double w0 = k.exact_value(0);
@@ -129,7 +132,7 @@ TEST(SincKernelPolynomial, SinglePrecisionWithinFloatRoundOff) {
             err = std::max(err, std::abs(double(view.gradh_in<float>()(s)) - gradh));
         }
         std::printf("n = %g: single-precision polynomial error %.2e of w(0)\n", n, err / w0);
-        EXPECT_LT(err / w0, 2.5e-6) << n;
+        EXPECT_LT(err / w0, n <= 8 ? 2.5e-6 : n <= 10 ? 5e-6 : 3e-5) << n;
         EXPECT_EQ(view.w_in<float>()(4.0f), 0.0f);
         EXPECT_EQ(&view.w_in<double>(), &view.w_sq); // the working precision's own polynomial
     }
