@@ -23,6 +23,16 @@ EXASPH_INLINE __m256d gather4(const double* f, const std::uint32_t* i) {
     return _mm256_insertf128_pd(_mm256_castpd128_pd256(lo), hi, 1);
 }
 
+// Four floats f[i[0..3]] as doubles.
+EXASPH_INLINE __m256d gather4_float(const float* f, const std::uint32_t* i) {
+    return _mm256_cvtps_pd(_mm_setr_ps(f[i[0]], f[i[1]], f[i[2]], f[i[3]]));
+}
+
+// u . v of four lanes of 3-vectors.
+EXASPH_INLINE __m256d dot3(const __m256d (&u)[3], const __m256d (&v)[3]) {
+    return _mm256_fmadd_pd(u[2], v[2], _mm256_fmadd_pd(u[1], v[1], _mm256_mul_pd(u[0], v[0])));
+}
+
 // PeriodicImage on four lanes of one axis: d - L where d > L/2, d + L where d < -L/2 (the same
 // comparisons and the same single rounding as the scalar operator; an open axis has L = 0 and
 // L/2 = infinity).

@@ -1,11 +1,13 @@
 #pragma once
-// momentum_energy_kern's pair loop for its plainest form (standard SPH, a constant alpha, no
-// stress, limiter or conductivity: the std scheme's default) written for AVX2, as the density
-// and IAD loops (sph/density_avx2.hpp): the portable loop's terms in the same order, eight
-// pairs per step (the two kernel polynomials on eight floats, the rest on two halves of four
-// doubles), the remainder as one masked step, the image only where the group may need it. GCC's
-// version of this loop took ~100 instructions per pair, a third of them spills and the
-// one-by-one loads of its emulated gathers (docs/performance.md).
+// momentum_energy_kern's pair loop written for AVX2, as the density and IAD loops
+// (sph/density_avx2.hpp), for the two forms the schemes run by default with a constant alpha:
+// `plain` (standard SPH, no stress, limiter or conductivity: the std scheme) and `limited`
+// (volume elements, the slope-limited viscosity and the conductivity: the ve and pe schemes).
+// The portable loop's terms in the same order, eight pairs per step (the two kernel polynomials
+// on eight floats, the rest on two halves of four doubles), the remainder as one masked step,
+// the image only where the group may need it. GCC's version of the plain loop took ~100
+// instructions per pair, a third of them spills and the one-by-one loads of its emulated
+// gathers; the limited one (simdlen 8) was 46 % of the ve step (docs/performance.md).
 #include "exasph/sph/avx2_lanes.hpp"
 
 #ifdef EXASPH_AVX2_PAIRS
@@ -13,14 +15,10 @@
 
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/limited_terms_avx2.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 
 namespace exasph::avx2 {
-
-// Four floats f[i[0..3]] as doubles.
-EXASPH_INLINE __m256d gather4_float(const float* f, const std::uint32_t* i) {
-    return _mm256_cvtps_pd(_mm_setr_ps(f[i[0]], f[i[1]], f[i[2]], f[i[3]]));
-}
 
 EXASPH_INLINE double horizontal_max(__m256d v) {
     const __m128d m = _mm_max_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
@@ -32,10 +30,14 @@ struct MomentumEnergySums {
     double ax, ay, az, du, vsig_max;
 };
 
-class MomentumEnergyPlain {
+// kLimited: the limited form (PairTerms::limited with volume elements and a constant alpha),
+// else the plain one.
+template <bool kLimited>
+class MomentumEnergyPairs {
   public:
-    MomentumEnergyPlain(std::uint32_t a, const ParticleView<double, float>& p,
-                        const Box<double>& box, const KernelView<double>& k, double alpha)
+    MomentumEnergyPairs(std::uint32_t a, const ParticleView<double, float>& p,
+                        const Box<double>& box, const KernelView<double>& k,
+                        const Dissipation<double>& diss)
         : x_{p[Field::x], p[Field::y], p[Field::z]}, v_{p[Field::vx], p[Field::vy], p[Field::vz]},
           h_(p[Field::h]), m_(p[Field::m]), c_(p.narrow(Field::c)), pgrad_(p.narrow(Field::pgrad)),
           rho_(p.narrow(Field::rho)), cm_{p.narrow(Field::c11), p.narrow(Field::c12),
@@ -48,13 +50,18 @@ class MomentumEnergyPlain {
         }
         for (int e = 0; e < 6; ++e) cma_[e] = _mm256_set1_pd(double(cm_[e][a]));
         const double inv_ha = 1.0 / h_[a], inv_ha2 = inv_ha * inv_ha;
+        inv_ha_ = _mm256_set1_pd(inv_ha);
         inv_ha2_ = _mm256_set1_pd(inv_ha2);
         inv_ha3_ = _mm256_set1_pd(inv_ha2 * inv_ha);
-        pa_ = double(pgrad_[a]);
+        // Volume elements: X_a / m_a on both members' pressure coefficients (1 without them)
+        if constexpr (kLimited) lim_ = LimitedTerms(a, p, diss);
+        const double xa_ma = kLimited ? lim_.xm[a] / m_[a] : 1.0;
+        pa_ = double(pgrad_[a]) * xa_ma;
+        xa_ma_ = _mm256_set1_pd(xa_ma);
         ca_ = _mm256_set1_pd(double(c_[a]));
         pav_ = _mm256_set1_pd(pa_);
         inv_rho_a_ = _mm256_set1_pd(1.0 / double(rho_[a]));
-        pi_factor_ = _mm256_set1_pd(-0.5 * alpha);
+        pi_factor_ = _mm256_set1_pd(-0.5 * diss.alpha);
     }
 
     MomentumEnergySums sum(ContiguousSpan nb) const {
@@ -68,11 +75,14 @@ class MomentumEnergyPlain {
     Image4 image_;
     std::uint32_t a_;
     double pa_;
-    __m256d xa_[3], va_[3], cma_[6], inv_ha2_, inv_ha3_, ca_, pav_, inv_rho_a_, pi_factor_;
+    __m256d xa_[3], va_[3], cma_[6], inv_ha_, inv_ha2_, inv_ha3_, xa_ma_, ca_, pav_, inv_rho_a_,
+        pi_factor_;
+    LimitedTerms lim_;
 
     struct Lanes {
         __m256d ax = _mm256_setzero_pd(), ay = _mm256_setzero_pd(), az = _mm256_setzero_pd();
         __m256d du_p = _mm256_setzero_pd(), du_av = _mm256_setzero_pd();
+        __m256d du_cond = _mm256_setzero_pd();
         __m256d vsig_max = _mm256_setzero_pd();
     };
 
@@ -81,8 +91,9 @@ class MomentumEnergyPlain {
         Lanes acc;
         for_each_eight(nb.index, nb.count, a_,
                        [&](const std::uint32_t* i, __m256i valid) { add8<kWrap>(i, valid, acc); });
-        return {horizontal_sum(acc.ax), horizontal_sum(acc.ay), horizontal_sum(acc.az),
-                pa_ * horizontal_sum(acc.du_p) + 0.25 * horizontal_sum(acc.du_av),
+        double du = pa_ * horizontal_sum(acc.du_p) + 0.25 * horizontal_sum(acc.du_av);
+        if constexpr (kLimited) du += horizontal_sum(acc.du_cond);
+        return {horizontal_sum(acc.ax), horizontal_sum(acc.ay), horizontal_sum(acc.az), du,
                 horizontal_max(acc.vsig_max)};
     }
 
@@ -134,7 +145,7 @@ class MomentumEnergyPlain {
             _mm256_fmadd_pd(m[5], d[2], _mm256_fmadd_pd(m[4], d[1], _mm256_mul_pd(m[2], d[0])));
     }
 
-    // SPEC 6's terms of four pairs (momentum_energy_kern without the options).
+    // SPEC 6's terms of four pairs (momentum_energy_portable's plain or limited form).
     EXASPH_INLINE void pair_terms(const std::uint32_t* i, const Geometry& g, __m256d kwa,
                                   __m256d kwb, __m256d ok, Lanes& acc) const {
         const __m256d r = _mm256_sqrt_pd(g.r2);
@@ -152,18 +163,24 @@ class MomentumEnergyPlain {
             ab[c] = _mm256_mul_pd(cb[c], wb); // A_ab(h_b)
             vab[c] = _mm256_sub_pd(va_[c], gather4(v_[c], i));
         }
-        const __m256d vr = _mm256_sub_pd(_mm256_setzero_pd(), dot(vab, g.d)); // v_ab . r_ab
+        const __m256d vr = _mm256_sub_pd(_mm256_setzero_pd(), dot3(vab, g.d)); // v_ab . r_ab
         const __m256d w_ab = _mm256_mul_pd(vr, inv_r);
-        const __m256d vsig = _mm256_sub_pd(_mm256_add_pd(ca_, gather4_float(c_, i)),
-                                           _mm256_mul_pd(_mm256_set1_pd(3.0), w_ab));
+        const __m256d c_ab = _mm256_add_pd(ca_, gather4_float(c_, i));
+        const __m256d vsig = _mm256_sub_pd(c_ab, _mm256_mul_pd(_mm256_set1_pd(3.0), w_ab));
         acc.vsig_max = _mm256_max_pd(_mm256_and_pd(vsig, ok), acc.vsig_max);
         const __m256d approaching = _mm256_cmp_pd(vr, _mm256_setzero_pd(), _CMP_LT_OQ);
-        const __m256d pi = _mm256_and_pd(
-            approaching, _mm256_mul_pd(_mm256_mul_pd(pi_factor_, vsig), w_ab)); // Pi_ab
-        const __m256d pb = gather4_float(pgrad_, i);
-        const __m256d inv_rho_b = _mm256_div_pd(_mm256_set1_pd(1.0), gather4_float(rho_, i));
+        __m256d pi; // Pi_ab
+        if constexpr (kLimited)
+            pi = lim_.pi(i, g.d, r, inv_r, inv_ha_, g.inv_hb, vr, w_ab, approaching, c_ab,
+                         pi_factor_);
+        else
+            pi = _mm256_and_pd(approaching, _mm256_mul_pd(_mm256_mul_pd(pi_factor_, vsig), w_ab));
+        const __m256d pb = _mm256_mul_pd(gather4_float(pgrad_, i), xa_ma_);
+        const __m256d rho_b = gather4_float(rho_, i);
+        const __m256d inv_rho_b = _mm256_div_pd(_mm256_set1_pd(1.0), rho_b);
         const __m256d mb = gather4(m_, i);
-        __m256d gr[3]; // A(h_a)/rho_a + A(h_b)/rho_b
+        const __m256d xb = kLimited ? gather4(lim_.xm, i) : mb; // X_b (m_b in standard SPH)
+        __m256d gr[3];                                          // A(h_a)/rho_a + A(h_b)/rho_b
         for (int c = 0; c < 3; ++c)
             gr[c] = _mm256_fmadd_pd(ab[c], inv_rho_b, _mm256_mul_pd(aa[c], inv_rho_a_));
         const __m256d half_pi = _mm256_mul_pd(_mm256_set1_pd(0.5), pi);
@@ -171,16 +188,19 @@ class MomentumEnergyPlain {
         for (int c = 0; c < 3; ++c) {
             const __m256d pressure = _mm256_fmadd_pd(pb, ab[c], _mm256_mul_pd(pav_, aa[c]));
             const __m256d viscous = _mm256_mul_pd(_mm256_mul_pd(mb, half_pi), gr[c]);
-            *a[c] = _mm256_sub_pd(*a[c], _mm256_fmadd_pd(mb, pressure, viscous));
+            *a[c] = _mm256_sub_pd(*a[c], _mm256_fmadd_pd(xb, pressure, viscous));
         }
-        acc.du_p = _mm256_fmadd_pd(mb, dot(vab, aa), acc.du_p);
-        acc.du_av = _mm256_fmadd_pd(_mm256_mul_pd(mb, pi), dot(vab, gr), acc.du_av);
-    }
-
-    EXASPH_INLINE static __m256d dot(const __m256d (&u)[3], const __m256d (&v)[3]) {
-        return _mm256_fmadd_pd(u[2], v[2], _mm256_fmadd_pd(u[1], v[1], _mm256_mul_pd(u[0], v[0])));
+        acc.du_p = _mm256_fmadd_pd(xb, dot3(vab, aa), acc.du_p);
+        acc.du_av = _mm256_fmadd_pd(_mm256_mul_pd(mb, pi), dot3(vab, gr), acc.du_av);
+        if constexpr (kLimited)
+            if (lim_.conduction_on)
+                acc.du_cond =
+                    _mm256_sub_pd(acc.du_cond, lim_.conduction(i, g.d, inv_r, aa, ab, mb, rho_b));
     }
 };
+
+using MomentumEnergyPlain = MomentumEnergyPairs<false>;
+using MomentumEnergyLimited = MomentumEnergyPairs<true>;
 
 } // namespace exasph::avx2
 #endif

@@ -294,36 +294,36 @@ TEST(IadPairs, DispatchedLoopMatchesThePortableOne) {
     }
 }
 
-// The momentum-energy sums of the std scheme's form (constant alpha, no options) through
+// The momentum-energy sums of one form (kTerms, kVolumeElements; constant alpha) through
 // momentum_energy_kern (the AVX2 loop where the build targets it) against the portable loop, on
 // random particles, velocities and internal energies after real density and IAD passes, in a
 // periodic and an open box, for every list prefix of some particles.
-TEST(MomentumEnergyPairs, DispatchedLoopMatchesThePortableOne) {
+template <PairTerms kTerms, bool kVolumeElements>
+void dispatched_momentum_energy_matches_portable(const Dissipation<double>& diss) {
     for (const bool periodic : {true, false}) {
         Prepared s;
         s.box = testref::unit_box(periodic);
         s.ps = testref::random_cube(5000, 13, 0.05, 0.09);
         std::mt19937_64 rng(9);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
+        if (kVolumeElements) s.ps.enable(Field::xm), s.ps.enable(Field::kx);
         for (std::size_t i = 0; i < s.ps.size(); ++i) {
             s.ps[Field::m][i] = 2e-4 * (1.0 + 0.01 * double(i % 5));
             s.ps[Field::u][i] = 1.0 + 0.5 * u(rng);
             for (Field f : {Field::vx, Field::vy, Field::vz}) s.ps[f][i] = u(rng);
+            if (kVolumeElements) s.ps[Field::xm][i] = 3e-4 * (1.0 + 0.3 * u(rng));
         }
         prepare(s);
         const auto& k = testref::sinc6();
         compute_density(s.ps, s.nl, s.box, k.view());
-        compute_iad(s.ps, s.nl, s.box, k.view());
+        compute_iad(s.ps, s.nl, s.box, k.view(), diss.reconstruct, kVolumeElements);
         const auto view = make_view(s.ps);
-        Dissipation<double> diss;
-        diss.alpha = 0.8;
-        constexpr auto kPlain = PairTerms::plain;
         // The sums' round-off scale: the pair terms' magnitudes (they cancel in the sums).
         double a_scale = 0, du_scale = 0;
         auto scale = [&](std::uint32_t a, ContiguousSpan nb) {
             a_scale = du_scale = 1e-300;
             for (std::uint32_t j = 0; j < nb.count; ++j) {
-                const auto t = momentum_energy_portable<double, kPlain, false, false>(
+                const auto t = momentum_energy_portable<double, kTerms, false, kVolumeElements>(
                     a, ContiguousSpan{nb.index + j, 1, nb.wraps}, view, s.box, k.view(), diss);
                 a_scale += std::abs(t.ax) + std::abs(t.ay) + std::abs(t.az);
                 du_scale += std::abs(t.du);
@@ -331,9 +331,9 @@ TEST(MomentumEnergyPairs, DispatchedLoopMatchesThePortableOne) {
         };
         const std::size_t checked =
             for_each_list_prefix(s.nl, scale, [&](std::uint32_t a, ContiguousSpan part) {
-                const auto f = momentum_energy_kern<double, kPlain, false, false>(
+                const auto f = momentum_energy_kern<double, kTerms, false, kVolumeElements>(
                     a, part, view, s.box, k.view(), diss);
-                const auto r = momentum_energy_portable<double, kPlain, false, false>(
+                const auto r = momentum_energy_portable<double, kTerms, false, kVolumeElements>(
                     a, part, view, s.box, k.view(), diss);
                 ASSERT_NEAR(f.ax, r.ax, 1e-14 * a_scale) << a << " " << part.count;
                 ASSERT_NEAR(f.ay, r.ay, 1e-14 * a_scale) << a << " " << part.count;
@@ -342,5 +342,23 @@ TEST(MomentumEnergyPairs, DispatchedLoopMatchesThePortableOne) {
                 ASSERT_NEAR(f.vsig_max, r.vsig_max, 1e-13 * r.vsig_max) << a << " " << part.count;
             });
         EXPECT_GT(checked, s.ps.size());
+    }
+}
+
+// The std scheme's form: standard SPH, no options.
+TEST(MomentumEnergyPairs, DispatchedLoopMatchesThePortableOne) {
+    Dissipation<double> diss;
+    diss.alpha = 0.8;
+    dispatched_momentum_energy_matches_portable<PairTerms::plain, false>(diss);
+}
+
+// The ve scheme's form (volume elements, the slope-limited viscosity, conductivity 1) and the
+// pe scheme's (the same without conductivity). The random velocities give both signs of the
+// slopes, and close pairs fade the reconstruction.
+TEST(MomentumEnergyPairs, LimitedFormMatchesThePortableOne) {
+    for (const double alpha_u : {1.0, 0.0}) {
+        const auto diss = Dissipation<double>::of(1.0, alpha_u, true, 100);
+        ASSERT_EQ(diss.terms(), PairTerms::limited);
+        dispatched_momentum_energy_matches_portable<PairTerms::limited, true>(diss);
     }
 }
