@@ -1,0 +1,159 @@
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#endif
+
+#include "exasph/tree/leaf_scan.hpp"
+#include "exasph/tree/neighbour_search.hpp"
+#include "exasph/util/annotate.hpp"
+
+// The candidate leaves of a leaf group as box arrays, and which of them a particle reaches:
+// the first test of the neighbour search's encoding (tree/neighbour_encode.hpp).
+namespace exasph {
+
+// The candidate leaves' boxes as arrays (centre, inflated half-width, hmax), so that one
+// vectorised loop tests a particle against all of them (node_distance2, same arithmetic), and
+// their particle ranges (read per particle without chasing the node pointers: that loop took
+// 16 % of the search on Zen 2). `wraps[l]`: whether some particle of leaf l may lie more than
+// half a period from some particle of the group along a periodic axis (from the tight boxes;
+// fl(x_b - x_a) <= fl(hi_l - lo_g) as rounding is monotonic), i.e. whether the minimum image
+// can change a distance; where it cannot, the leaf scan skips it (the same bits, less work: the
+// image was half the scan's arithmetic).
+template <class T>
+struct CandidateBoxes {
+    std::vector<T> c[3], e[3], hmax;
+    std::vector<std::uint32_t> begin, size;
+    std::vector<unsigned char> reached, wraps;
+    std::vector<std::uint64_t> reached_words; // bit l: candidate l reached
+    // The box arrays hold whole steps of kLanes: the padding's boxes lie at infinity.
+    static constexpr std::size_t kLanes = 4;
+    void assign(const std::vector<const OctreeNode<T>*>& leaves, const OctreeNode<T>& group,
+                const PeriodicImage<T>& im) {
+        const std::size_t n = leaves.size(), padded = (n + kLanes - 1) / kLanes * kLanes;
+        for (int d = 0; d < 3; ++d) {
+            c[d].assign(padded, std::numeric_limits<T>::infinity());
+            e[d].assign(padded, T(0));
+        }
+        hmax.assign(padded, T(0));
+        begin.resize(n);
+        size.resize(n);
+        reached.resize(n);
+        reached_words.resize((n + 63) / 64);
+        wraps.resize(n);
+        for (std::size_t l = 0; l < n; ++l) {
+            for (int d = 0; d < 3; ++d) {
+                c[d][l] = T(0.5) * (leaves[l]->lo[d] + leaves[l]->hi[d]);
+                e[d][l] = T(0.5) * (leaves[l]->hi[d] - leaves[l]->lo[d]) * T(kPruneInflate);
+            }
+            hmax[l] = leaves[l]->hmax;
+            begin[l] = leaves[l]->begin;
+            size[l] = leaves[l]->end - leaves[l]->begin;
+            bool w = false;
+            for (int d = 0; d < 3; ++d) {
+                const T far =
+                    std::max(leaves[l]->hi[d] - group.lo[d], group.hi[d] - leaves[l]->lo[d]);
+                w |= im.len[d] > T(0) && !(far <= im.half[d]);
+            }
+            wraps[l] = w;
+        }
+    }
+};
+
+// Which candidate leaf boxes come within reach of the particle at pos with smoothing length hi
+// (branch-free, vectorised): flags in boxes.reached.
+template <class T>
+EXASPH_INLINE const unsigned char* mark_reached_leaves(CandidateBoxes<T>& boxes,
+                                                       std::size_t nleaves, const T (&pos)[3], T hi,
+                                                       bool symmetric, const PeriodicImage<T>& im) {
+    const T lx = im.len[0], ly = im.len[1], lz = im.len[2];
+    const T hx = im.half[0], hy = im.half[1], hz = im.half[2];
+    const T *cx = boxes.c[0].data(), *cy = boxes.c[1].data(), *cz = boxes.c[2].data();
+    const T *ex = boxes.e[0].data(), *ey = boxes.e[1].data(), *ez = boxes.e[2].data();
+    const T* lh = boxes.hmax.data();
+    unsigned char* reached = boxes.reached.data();
+#pragma omp simd
+    for (std::size_t l = 0; l < nleaves; ++l) {
+        T gx = std::abs(wrap(cx[l] - pos[0], lx, hx)) - ex[l];
+        T gy = std::abs(wrap(cy[l] - pos[1], ly, hy)) - ey[l];
+        T gz = std::abs(wrap(cz[l] - pos[2], lz, hz)) - ez[l];
+        gx = gx > T(0) ? gx : T(0);
+        gy = gy > T(0) ? gy : T(0);
+        gz = gz > T(0) ? gz : T(0);
+        T reach = T(2) * (symmetric ? std::max(hi, lh[l]) : hi);
+        reached[l] = gx * gx + gy * gy + gz * gz < reach * reach;
+    }
+    return reached;
+}
+
+#if defined(__AVX2__) && defined(__FMA__)
+#define EXASPH_LEAF_BOXES_AVX2 1
+// mark_reached_leaves on four candidates per step, as bits (GCC left the portable loop scalar:
+// doubles in, bytes out). The same arithmetic: the minimum image, the gap to the inflated box
+// per axis clamped at 0, then |gap|^2 < (2 max(h_a, hmax_l))^2.
+inline void reached_leaf_bits_avx2(const CandidateBoxes<double>& boxes, std::size_t nleaves,
+                                   const double (&pos)[3], double hi, bool symmetric,
+                                   const PeriodicImage<double>& im, std::uint64_t* words) {
+    __m256d p[3], len[3], half[3], neg_half[3];
+    for (int d = 0; d < 3; ++d) {
+        p[d] = _mm256_set1_pd(pos[d]);
+        len[d] = _mm256_set1_pd(im.len[d]);
+        half[d] = _mm256_set1_pd(im.half[d]);
+        neg_half[d] = _mm256_set1_pd(-im.half[d]);
+    }
+    const __m256d vhi = _mm256_set1_pd(hi), zero = _mm256_setzero_pd(), two = _mm256_set1_pd(2.0);
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    for (std::size_t w = 0; w < (nleaves + 63) / 64; ++w) {
+        std::uint64_t word = 0;
+        const std::size_t end = std::min(nleaves, 64 * w + 64);
+        for (std::size_t l = 64 * w; l < end; l += 4) {
+            __m256d r2 = zero;
+            for (int d = 0; d < 3; ++d) {
+                __m256d x = _mm256_sub_pd(_mm256_loadu_pd(boxes.c[d].data() + l), p[d]);
+                x = _mm256_sub_pd(x, _mm256_and_pd(_mm256_cmp_pd(x, half[d], _CMP_GT_OQ), len[d]));
+                x = _mm256_add_pd(x,
+                                  _mm256_and_pd(_mm256_cmp_pd(x, neg_half[d], _CMP_LT_OQ), len[d]));
+                __m256d g = _mm256_sub_pd(_mm256_andnot_pd(sign, x),
+                                          _mm256_loadu_pd(boxes.e[d].data() + l));
+                g = _mm256_and_pd(g, _mm256_cmp_pd(g, zero, _CMP_GT_OQ));
+                r2 = _mm256_fmadd_pd(g, g, r2);
+            }
+            const __m256d h =
+                symmetric ? _mm256_max_pd(vhi, _mm256_loadu_pd(boxes.hmax.data() + l)) : vhi;
+            const __m256d reach = _mm256_mul_pd(two, h);
+            const __m256d hit = _mm256_cmp_pd(r2, _mm256_mul_pd(reach, reach), _CMP_LT_OQ);
+            word |= std::uint64_t(_mm256_movemask_pd(hit)) << (l - 64 * w);
+        }
+        words[w] = word;
+    }
+}
+#endif
+
+// mark_reached_leaves as bits: word w's bit k for candidate 64 w + k (the padding's never set).
+template <class T>
+EXASPH_INLINE const std::uint64_t* reached_leaf_bits(CandidateBoxes<T>& boxes, std::size_t nleaves,
+                                                     const T (&pos)[3], T hi, bool symmetric,
+                                                     const PeriodicImage<T>& im) {
+    std::uint64_t* words = boxes.reached_words.data();
+#if defined(EXASPH_LEAF_BOXES_AVX2)
+    if constexpr (std::is_same_v<T, double>) {
+        reached_leaf_bits_avx2(boxes, nleaves, pos, hi, symmetric, im, words);
+        return words;
+    }
+#endif
+    const unsigned char* reached = mark_reached_leaves(boxes, nleaves, pos, hi, symmetric, im);
+    for (std::size_t l = 0; l < nleaves; l += 64) {
+        std::uint64_t word = 0;
+        for (std::size_t k = 0; k < std::min<std::size_t>(64, nleaves - l); ++k)
+            word |= std::uint64_t(reached[l + k]) << k;
+        words[l / 64] = word;
+    }
+    return words;
+}
+
+} // namespace exasph
