@@ -56,7 +56,8 @@ class DensityPairs {
     DensitySums sum(ContiguousSpan nb) const {
         Lanes acc;
         for_each_eight(nb.index, nb.count, a_,
-                       [&](const std::uint32_t* i, __m256i valid) { add8<kWrap>(i, valid, acc); });
+                       [&](const std::uint32_t* i, __m256i valid)
+                           EXASPH_INLINE_LAMBDA { add8<kWrap>(i, valid, acc); });
         DensitySums s;
         s.k = horizontal_sum(_mm256_add_pd(acc.k[0], acc.k[1]));
         s.dh = horizontal_sum(_mm256_add_pd(acc.dh[0], acc.dh[1]));

@@ -66,7 +66,8 @@ class IadPairs {
     IadSums<double> sum(ContiguousSpan nb) const {
         Lanes acc;
         for_each_eight(nb.index, nb.count, a_,
-                       [&](const std::uint32_t* i, __m256i valid) { add8<kWrap>(i, valid, acc); });
+                       [&](const std::uint32_t* i, __m256i valid)
+                           EXASPH_INLINE_LAMBDA { add8<kWrap>(i, valid, acc); });
         IadSums<double> s{};
         for (int c = 0; c < 6; ++c) s.t[c] = horizontal_sum(acc.t[c]);
         if constexpr (kGrad)

@@ -89,6 +89,9 @@ class MomentumEnergyPairs {
     template <bool kWrap>
     MomentumEnergySums sum(ContiguousSpan nb) const {
         Lanes acc;
+        // The body stays a call per eight pairs (its sums in memory): inlined into the loop it
+        // spilled more than that saved (plain 0.0837 -> 0.0853, limited 0.1375 -> 0.1417 s per
+        // step at Sedov 125k), unlike the density and IAD bodies.
         for_each_eight(nb.index, nb.count, a_,
                        [&](const std::uint32_t* i, __m256i valid) { add8<kWrap>(i, valid, acc); });
         double du = pa_ * horizontal_sum(acc.du_p) + 0.25 * horizontal_sum(acc.du_av);

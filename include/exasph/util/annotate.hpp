@@ -15,6 +15,14 @@
 #define EXASPH_INLINE inline
 #endif
 
+// The same for a lambda (after its parameter list): GCC does not inline a large lambda called
+// from two places, e.g. a pair loop's body (avx2::for_each_eight), whose sums then live in memory.
+#if defined(__GNUC__) || defined(__clang__)
+#define EXASPH_INLINE_LAMBDA __attribute__((always_inline))
+#else
+#define EXASPH_INLINE_LAMBDA
+#endif
+
 // Keeps a function out of its callers' loops (where inlining costs the loop registers).
 #if defined(__GNUC__) || defined(__clang__)
 #define EXASPH_NOINLINE __attribute__((noinline))
