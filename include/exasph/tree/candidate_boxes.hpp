@@ -129,7 +129,9 @@ inline void reached_leaf_bits_avx2(const CandidateBoxes<double>& boxes, std::siz
             const __m256d hit = _mm256_cmp_pd(r2, _mm256_mul_pd(reach, reach), _CMP_LT_OQ);
             word |= std::uint64_t(_mm256_movemask_pd(hit)) << (l - 64 * w);
         }
-        words[w] = word;
+        // The padding's lanes: never reached, even for a NaN position (whose gaps clamp to 0)
+        const std::size_t valid = end - 64 * w;
+        words[w] = valid < 64 ? word & ((std::uint64_t(1) << valid) - 1) : word;
     }
 }
 #endif
