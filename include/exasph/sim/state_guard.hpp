@@ -38,7 +38,7 @@ class StateGuard {
     std::string check(const ParticleSet<T>& ps, std::size_t n, const Box<T>& box, double dt,
                       bool press_ok, bool u_positive) const {
         const auto nn = std::int64_t(n);
-        std::int64_t bad_hash = nn, bad_physics;
+        std::int64_t bad_hash = nn;
         if (sealed_ && hashes_.size() == n)
             bad_hash = std::int64_t(over_hash_blocks(
                 ps, n, [&](std::size_t first, std::size_t count, const std::uint32_t* h) {
@@ -49,7 +49,8 @@ class StateGuard {
         std::string why;
         std::vector<const T*> state; // the enabled state fields, looked up once
         for (Field f : ps.fields(kState)) state.push_back(ps.data(f));
-        bad_physics = std::int64_t(first_violation(ps, state, n, box, dt, press_ok, u_positive));
+        const auto bad_physics =
+            std::int64_t(first_violation(ps, state, n, box, dt, press_ok, u_positive));
         if (bad_hash < nn)
             why = "particle id " + std::to_string(ps.id[bad_hash]) +
                   ": state changed between steps (hash mismatch)";

@@ -178,7 +178,8 @@ class MomentumEnergyPairs {
                          pi_factor_);
         else
             pi = _mm256_and_pd(approaching, _mm256_mul_pd(_mm256_mul_pd(pi_factor_, vsig), w_ab));
-        const __m256d pb = _mm256_mul_pd(gather4_float(pgrad_, i), xa_ma_);
+        __m256d pb = gather4_float(pgrad_, i);
+        if constexpr (kLimited) pb = _mm256_mul_pd(pb, xa_ma_); // X_a / m_a (1 in standard SPH)
         const __m256d rho_b = gather4_float(rho_, i);
         const __m256d inv_rho_b = _mm256_div_pd(_mm256_set1_pd(1.0), rho_b);
         const __m256d mb = gather4(m_, i);

@@ -2,8 +2,6 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
-#include <limits>
-#include <type_traits>
 #include <vector>
 
 #include "exasph/tree/candidate_boxes.hpp"
