@@ -87,6 +87,7 @@ class IadPairs {
         const __m256 valid = _mm256_castsi256_ps(valid_lanes);
         __m256d d[2][3];
         __m128 s[2];
+#pragma GCC unroll 2
         for (int h = 0; h < 2; ++h) {
             for (int c = 0; c < 3; ++c) d[h][c] = difference<kWrap>(i + 4 * h, c);
             const __m256d r2 =
@@ -98,6 +99,7 @@ class IadPairs {
         const __m256 inside =
             _mm256_and_ps(_mm256_cmp_ps(v2, _mm256_set1_ps(4.0f), _CMP_LT_OQ), valid);
         const __m256 w = _mm256_and_ps(w_(PolyPowers(v2)), inside); // finite: the mask zeroes it
+#pragma GCC unroll 2
         for (int h = 0; h < 2; ++h) {
             const std::uint32_t* ih = i + 4 * h;
             const __m256d vol = _mm256_div_pd(gather4(xm_, ih), gather4_wide(kx_, ih));
