@@ -135,6 +135,16 @@ inline std::uint32_t expand_mask16(std::uint32_t mask, std::uint32_t first, std:
 #endif
 }
 
+// expand_mask16 for a mask of at most 32 bits: four bytes expanded whatever they hold.
+inline std::uint32_t expand_mask32(std::uint32_t mask, std::uint32_t first, std::uint32_t* out) {
+#if defined(__AVX2__) && !defined(__AVX512F__)
+    const std::uint32_t c = expand_mask16(mask & 0xFFFFu, first, out);
+    return c + expand_mask16(mask >> 16, first + 16, out + c);
+#else
+    return expand_mask(mask, first, out);
+#endif
+}
+
 // Sets bit `pos` of a zero-initialised byte record.
 inline void set_bit(std::uint8_t* base, std::uint64_t pos) {
     base[pos >> 3] |= std::uint8_t(1u << (pos & 7u));

@@ -122,9 +122,9 @@ class NeighbourLists {
                     const std::uint32_t l = w + std::uint32_t(std::countr_zero(word));
                     word &= word - 1;
                     const std::uint32_t first = first_[l], size = size_[l];
-                    for (std::uint32_t o = 0; o < size; o += 16) {
-                        const unsigned n = std::min(16u, size - o);
-                        count += codec::expand_mask16(codec::load_bits(hits, pos + o, n), first + o,
+                    for (std::uint32_t o = 0; o < size; o += 32) {
+                        const unsigned n = std::min(32u, size - o);
+                        count += codec::expand_mask32(codec::load_bits(hits, pos + o, n), first + o,
                                                       out + count);
                     }
                     pos += size;
