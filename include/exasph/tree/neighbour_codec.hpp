@@ -112,10 +112,10 @@ inline std::uint32_t expand_mask(std::uint32_t mask, std::uint32_t first, std::u
 #endif
 }
 
-// expand_mask for a mask of at most 16 bits, without branches on its value: the decoder's unit
-// (a leaf of up to 16 particles, the usual size, in one call). On AVX2 both bytes are expanded
-// whatever they hold; with expand_mask's early exit on a zero byte the branch mispredicted on
-// about every other leaf (the density pass spent 28 % of its time decoding on Zen 2).
+// expand_mask for a mask of at most 16 bits, without branches on its value. On AVX2 both bytes
+// are expanded whatever they hold; with expand_mask's early exit on a zero byte the branch
+// mispredicted on about every other leaf (the density pass spent 28 % of its time decoding on
+// Zen 2).
 inline std::uint32_t expand_mask16(std::uint32_t mask, std::uint32_t first, std::uint32_t* out) {
 #if defined(__AVX2__) && !defined(__AVX512F__)
     const unsigned lo = mask & 0xFFu, hi = (mask >> 8) & 0xFFu;
@@ -135,7 +135,9 @@ inline std::uint32_t expand_mask16(std::uint32_t mask, std::uint32_t first, std:
 #endif
 }
 
-// expand_mask16 for a mask of at most 32 bits: four bytes expanded whatever they hold.
+// expand_mask16 for a mask of at most 32 bits, four bytes expanded whatever they hold: the
+// decoder's unit (a leaf of up to 32 particles in one call; with 16 bits a call, the loop's exit
+// branch mispredicted at leaves of 17-32: density 2 %, IAD 3 % faster on Zen 2).
 inline std::uint32_t expand_mask32(std::uint32_t mask, std::uint32_t first, std::uint32_t* out) {
 #if defined(__AVX2__) && !defined(__AVX512F__)
     const std::uint32_t c = expand_mask16(mask & 0xFFFFu, first, out);
