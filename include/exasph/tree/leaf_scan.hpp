@@ -87,11 +87,9 @@ std::uint32_t scan_leaf_avx2(std::uint32_t begin, std::uint32_t end, const Searc
     }
     const double* coord[3] = {p.x, p.y, p.z};
     const __m256i lane = _mm256_setr_epi64x(0, 1, 2, 3);
-    // Hit flags of the four candidates from b on (lanes at or past `end`, all four when b is
-    // past it, are not loaded and have none).
+    // Hit flags of the four candidates from b on (lanes at or past `end` are not loaded).
     auto hits4 = [&](std::uint32_t b) {
-        const __m256i valid =
-            _mm256_cmpgt_epi64(_mm256_set1_epi64x(std::int64_t(end) - std::int64_t(b)), lane);
+        const __m256i valid = _mm256_cmpgt_epi64(_mm256_set1_epi64x(std::int64_t(end - b)), lane);
         __m256d r2 = _mm256_setzero_pd();
         for (int d = 0; d < 3; ++d) {
             __m256d x = _mm256_sub_pd(_mm256_maskload_pd(coord[d] + b, valid), centre[d]);
@@ -112,8 +110,7 @@ std::uint32_t scan_leaf_avx2(std::uint32_t begin, std::uint32_t end, const Searc
     std::uint32_t count = 0;
     for (std::uint32_t b = begin; b < end; b += 8) {
         const std::uint32_t n = std::min<std::uint32_t>(8, end - b);
-        // Both halves whatever n is: a branch on n > 4 mispredicted at leaf ends.
-        std::uint32_t hit = hits4(b) | hits4(b + 4) << 4;
+        std::uint32_t hit = hits4(b) | (n > 4 ? hits4(b + 4) << 4 : 0u);
         if (self >= b && self < b + n) hit &= ~(1u << (self - b));
         out.put(hit, n);
         count += std::uint32_t(std::popcount(hit));
