@@ -5,7 +5,7 @@
 
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
-#include "exasph/sph/density_avx2.hpp"
+#include "exasph/sph/density_simd.hpp"
 #include "exasph/sph/eos.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/box.hpp"
@@ -65,16 +65,16 @@ EXASPH_HD DensityPairSums<T> density_pairs_portable(std::uint32_t a, Span nb,
     return {k_sum, dh_sum, nc};
 }
 
-// The pair sums, with AVX2 where the build targets it (the portable loop's arithmetic, lane for
-// lane: sph/density_avx2.hpp).
+// The pair sums, with AVX2 or AVX-512 where the build targets it (the portable loop's arithmetic,
+// lane for lane: sph/density_simd.hpp).
 template <class T, class N, class Span>
 EXASPH_HD DensityPairSums<T> density_pairs(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
                                            const Box<T>& box, const KernelView<T>& k, double k0,
                                            double dh0) {
-#ifdef EXASPH_AVX2_PAIRS
+#ifdef EXASPH_SIMD_PAIRS
     if constexpr (std::is_same_v<T, double> && std::is_same_v<N, float> &&
                   std::is_same_v<Span, ContiguousSpan>) {
-        const avx2::DensitySums s = avx2::DensityPairs(a, p, box, k).sum(nb);
+        const simd::DensitySums s = simd::DensityPairs<simd::Native>(a, p, box, k).sum(nb);
         return {k0 + s.k, dh0 + s.dh, T(s.nc)};
     }
 #endif

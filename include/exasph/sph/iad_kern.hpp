@@ -5,8 +5,8 @@
 
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
-#include "exasph/sph/iad_avx2.hpp"
 #include "exasph/sph/iad_matrix.hpp"
+#include "exasph/sph/iad_simd.hpp"
 #include "exasph/sph/tensile_stress.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/box.hpp"
@@ -86,15 +86,15 @@ EXASPH_HD IadSums<T> iad_sums_portable(std::uint32_t a, Span nb, const ParticleV
     return {{t11, t12, t13, t22, t23, t33}, {dxx, dxy, dxz, dyx, dyy, dyz, dzx, dzy, dzz}};
 }
 
-// The sums, with AVX2 where the build targets it (sph/iad_avx2.hpp: the portable loop's
-// arithmetic lane for lane).
+// The sums, with AVX2 or AVX-512 where the build targets it (sph/iad_simd.hpp: the portable
+// loop's arithmetic lane for lane).
 template <bool kGrad, bool kOwnK, class T, class K, class N, class Span>
 EXASPH_HD IadSums<T> iad_sums(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
                               const Box<T>& box, const KernelView<T>& k, const K* kx) {
-#ifdef EXASPH_AVX2_PAIRS
+#ifdef EXASPH_SIMD_PAIRS
     if constexpr (!kOwnK && std::is_same_v<T, double> && std::is_same_v<N, float> &&
                   std::is_same_v<Span, ContiguousSpan>)
-        return avx2::IadPairs<kGrad, K>(a, p, box, k, kx).sum(nb);
+        return simd::IadPairs<simd::Native, kGrad, K>(a, p, box, k, kx).sum(nb);
 #endif
     return iad_sums_portable<kGrad, kOwnK>(a, nb, p, box, k, kx);
 }

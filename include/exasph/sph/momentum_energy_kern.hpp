@@ -7,7 +7,7 @@
 #include "exasph/kernel/kernel_table.hpp"
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/sph/iad_kern.hpp"
-#include "exasph/sph/momentum_energy_avx2.hpp"
+#include "exasph/sph/momentum_energy_simd.hpp"
 #include "exasph/sph/pair_dissipation.hpp"
 #include "exasph/sph/tensile_stress.hpp"
 #include "exasph/sph/timestep.hpp"
@@ -193,23 +193,23 @@ momentum_energy_portable(std::uint32_t a, Span nb, const ParticleView<T, N>& p, 
     return {ax, ay, az, pa * du_p + ra * du_ts + T(0.25) * du_av + du_cond, vsig_max, divv};
 }
 
-// The pass's sums, with AVX2 for the plain form (standard SPH, constant alpha) and the limited
-// one (volume elements, the limiter and the conductivity, constant alpha) where the build
-// targets it (sph/momentum_energy_avx2.hpp: the same terms, in the same order per pair).
+// The pass's sums, with AVX2 or AVX-512 for the plain form (standard SPH, constant alpha) and
+// the limited one (volume elements, the limiter and the conductivity, constant alpha) where the
+// build targets it (sph/momentum_energy_simd.hpp: the same terms, in the same order per pair).
 template <class T, PairTerms kTerms = PairTerms::any, bool kAlphaField = true,
           bool kVolumeElements = true, class N, class Span>
 EXASPH_HD MomentumEnergyResult<T>
 momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, const Box<T>& box,
                      const KernelView<T>& k, const Dissipation<T>& diss = {}) {
-#ifdef EXASPH_AVX2_PAIRS
-    constexpr bool kAvx2Types = std::is_same_v<T, double> && std::is_same_v<N, float> &&
+#ifdef EXASPH_SIMD_PAIRS
+    constexpr bool kSimdTypes = std::is_same_v<T, double> && std::is_same_v<N, float> &&
                                 std::is_same_v<Span, ContiguousSpan>;
-    if constexpr (kTerms == PairTerms::plain && !kAlphaField && !kVolumeElements && kAvx2Types) {
-        const auto s = avx2::MomentumEnergyPlain(a, p, box, k, diss).sum(nb);
+    if constexpr (kTerms == PairTerms::plain && !kAlphaField && !kVolumeElements && kSimdTypes) {
+        const auto s = simd::MomentumEnergyPairs<simd::Native, false>(a, p, box, k, diss).sum(nb);
         return {s.ax, s.ay, s.az, s.du, s.vsig_max, T(0)};
     }
-    if constexpr (kTerms == PairTerms::limited && !kAlphaField && kVolumeElements && kAvx2Types) {
-        const auto s = avx2::MomentumEnergyLimited(a, p, box, k, diss).sum(nb);
+    if constexpr (kTerms == PairTerms::limited && !kAlphaField && kVolumeElements && kSimdTypes) {
+        const auto s = simd::MomentumEnergyPairs<simd::Native, true>(a, p, box, k, diss).sum(nb);
         return {s.ax, s.ay, s.az, s.du, s.vsig_max, T(0)};
     }
 #endif

@@ -58,7 +58,11 @@ std::uint32_t scan_leaf_avx512(std::uint32_t begin, std::uint32_t end, const Sea
         if constexpr (kWrap) dx = wrap8(dx, 0), dy = wrap8(dy, 1), dz = wrap8(dz, 2);
         __m512d r2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
                                    _mm512_mul_pd(dz, dz));
-        __m512d hh = symmetric ? _mm512_max_pd(vhi, _mm512_maskz_loadu_pd(valid, p.h + b)) : vhi;
+        // the zero-masking max with every lane: the plain one trips GCC 12's false "maybe
+        // uninitialized" (bug 105593) on its undefined pass-through vector
+        __m512d hh = symmetric ? _mm512_maskz_max_pd(__mmask8(0xff), vhi,
+                                                     _mm512_maskz_loadu_pd(valid, p.h + b))
+                               : vhi;
         __m512d reach2 = _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(4.0), hh), hh);
         __mmask8 hit = _mm512_mask_cmp_pd_mask(valid, r2, reach2, _CMP_LT_OQ);
         if (self >= b && self < b + n) hit &= __mmask8(~(1u << (self - b)));

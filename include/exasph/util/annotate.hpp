@@ -16,7 +16,7 @@
 #endif
 
 // The same for a lambda (after its parameter list): GCC does not inline a large lambda called
-// from two places, e.g. a pair loop's body (avx2::for_each_eight), whose sums then live in memory.
+// from two places, e.g. a pair loop's body (simd::for_each_step), whose sums then live in memory.
 #if defined(__GNUC__) || defined(__clang__)
 #define EXASPH_INLINE_LAMBDA __attribute__((always_inline))
 #else

@@ -5,15 +5,12 @@
 
 #include "exasph/util/annotate.hpp"
 
-#if defined(__AVX2__) && defined(__FMA__) && !defined(__CUDA_ARCH__)
-#include <immintrin.h>
-#endif
-
 namespace exasph {
 
 // e^x for x <= 0 with neither a call nor a branch, so that a pair loop using it still vectorises
-// (GCC vectorises std::exp only under -ffast-math). Within 1 ulp of std::exp over [-40, 0]
-// (unit test); arguments below -700 give e^-700.
+// (GCC vectorises std::exp only under -ffast-math); the intrinsic pair loops run it on their
+// lanes step for step (simd::exp_nonpositive, sph/simd_isa.hpp). Within 1 ulp of std::exp over
+// [-40, 0] (unit test); arguments below -700 give e^-700.
 //   x = k ln2 + r, |r| <= ln2/2 (ln2 split in two parts, so that r is exact to round-off),
 //   e^r by its Taylor series to r^13 (truncation < r^14/14! < 1e-17),
 //   2^k by writing k + 1023 into the exponent bits (k + 1023 lands in the low mantissa bits of
@@ -54,24 +51,5 @@ EXASPH_HD EXASPH_INLINE T exp_nonpositive(T x_in) {
     return T(series * std::bit_cast<double>(exponent));
 #endif
 }
-
-#if defined(__AVX2__) && defined(__FMA__) && !defined(__CUDA_ARCH__)
-// exp_nonpositive on four lanes, step for step (the AVX2 pair loops, sph/avx2_lanes.hpp).
-EXASPH_INLINE __m256d exp_nonpositive4(__m256d x) {
-    const __m256d floor = _mm256_set1_pd(-700.0);
-    x = _mm256_blendv_pd(x, floor, _mm256_cmp_pd(x, floor, _CMP_LT_OQ)); // a NaN stays a NaN
-    const __m256d k = _mm256_round_pd(_mm256_mul_pd(x, _mm256_set1_pd(kLog2e)),
-                                      _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
-    const __m256d r = _mm256_sub_pd(_mm256_sub_pd(x, _mm256_mul_pd(k, _mm256_set1_pd(kLn2Hi))),
-                                    _mm256_mul_pd(k, _mm256_set1_pd(kLn2Lo)));
-    __m256d series = _mm256_set1_pd(kExpSeries[0]);
-    for (int j = 1; j < kExpSeriesTerms; ++j)
-        series = _mm256_fmadd_pd(series, r, _mm256_set1_pd(kExpSeries[j]));
-    const __m256d biased =
-        _mm256_add_pd(_mm256_add_pd(k, _mm256_set1_pd(1023.0)), _mm256_set1_pd(0x1p52));
-    const __m256i exponent = _mm256_slli_epi64(_mm256_castpd_si256(biased), 52);
-    return _mm256_mul_pd(series, _mm256_castsi256_pd(exponent));
-}
-#endif
 
 } // namespace exasph

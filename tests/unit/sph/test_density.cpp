@@ -213,10 +213,11 @@ TEST(Iad, SingularTauIsReported) {
     EXPECT_NEAR(ok.c11 * 0.5 + ok.c12 * 1.0, 0.0, 1e-14);
 }
 
-// The pair sums through density_pairs (the AVX2 loop where the build targets it, with the image
-// skipped for groups the search found not to wrap, and the last 1-7 pairs in a masked step)
-// against the portable loop, on random particles with h varying by 2x, in a periodic box and an
-// open one, for every length of list prefix (every remainder) of some particles.
+// The pair sums through density_pairs (the AVX2 or AVX-512 loop where the build targets it, with
+// the image skipped for groups the search found not to wrap, and the last pairs in a masked step;
+// on AVX-512 hosts the AVX2 loop too) against the portable loop, on random particles with h
+// varying by 2x, in a periodic box and an open one, for every length of list prefix (every
+// remainder) of some particles.
 TEST(DensityPairs, DispatchedLoopMatchesThePortableOne) {
     for (const bool periodic : {true, false}) {
         Prepared s;
@@ -236,6 +237,14 @@ TEST(DensityPairs, DispatchedLoopMatchesThePortableOne) {
                 ASSERT_NEAR(fast.k, ref.k, 1e-13 * std::abs(ref.k)) << a << " " << part.count;
                 ASSERT_NEAR(fast.dh, ref.dh, 1e-12 * std::abs(ref.k)) << a << " " << part.count;
                 ASSERT_EQ(fast.nc, ref.nc) << a << " " << part.count;
+#if defined(EXASPH_SIMD_PAIRS) && defined(__AVX512F__)
+                // The AVX2 lanes as well, which hosts without AVX-512 run.
+                const auto narrow =
+                    simd::DensityPairs<simd::Avx2>(a, view, s.box, k.view()).sum(part);
+                ASSERT_NEAR(1.0 + narrow.k, ref.k, 1e-13 * std::abs(ref.k)) << a;
+                ASSERT_NEAR(3.0 + narrow.dh, ref.dh, 1e-12 * std::abs(ref.k)) << a;
+                ASSERT_EQ(double(narrow.nc), ref.nc) << a;
+#endif
             });
         EXPECT_GT(checked, s.ps.size());
         // An open box never needs the image; a periodic one does near its faces only.
@@ -248,10 +257,10 @@ TEST(DensityPairs, DispatchedLoopMatchesThePortableOne) {
     }
 }
 
-// The IAD pass's sums through iad_sums (the AVX2 loop where the build targets it) against the
-// portable loop: tau's moments and D's, with k read as float (rho, standard SPH) and as double
-// (volume elements), on random particles and velocities in a periodic and an open box, for every
-// list prefix of some particles.
+// The IAD pass's sums through iad_sums (the AVX2 or AVX-512 loop where the build targets it; on
+// AVX-512 hosts the AVX2 loop too) against the portable loop: tau's moments and D's, with k read
+// as float (rho, standard SPH) and as double (volume elements), on random particles and
+// velocities in a periodic and an open box, for every list prefix of some particles.
 TEST(IadPairs, DispatchedLoopMatchesThePortableOne) {
     for (const bool periodic : {true, false}) {
         Prepared s;
@@ -289,15 +298,27 @@ TEST(IadPairs, DispatchedLoopMatchesThePortableOne) {
                 ASSERT_TRUE(same(iad_sums<true, false>(a, part, view, s.box, kb, kd),
                                  iad_sums_portable<true, false>(a, part, view, s.box, kb, kd), 9))
                     << a << " " << part.count;
+#if defined(EXASPH_SIMD_PAIRS) && defined(__AVX512F__)
+                // The AVX2 lanes as well, which hosts without AVX-512 run.
+                using Avx2Rho = simd::IadPairs<simd::Avx2, false, float>;
+                using Avx2K = simd::IadPairs<simd::Avx2, true, double>;
+                ASSERT_TRUE(same(Avx2Rho(a, view, s.box, kb, rho).sum(part),
+                                 iad_sums_portable<false, false>(a, part, view, s.box, kb, rho), 0))
+                    << a;
+                ASSERT_TRUE(same(Avx2K(a, view, s.box, kb, kd).sum(part),
+                                 iad_sums_portable<true, false>(a, part, view, s.box, kb, kd), 9))
+                    << a;
+#endif
             });
         EXPECT_GT(checked, s.ps.size());
     }
 }
 
 // The momentum-energy sums of one form (kTerms, kVolumeElements; constant alpha) through
-// momentum_energy_kern (the AVX2 loop where the build targets it) against the portable loop, on
-// random particles, velocities and internal energies after real density and IAD passes, in a
-// periodic and an open box, for every list prefix of some particles.
+// momentum_energy_kern (the AVX2 or AVX-512 loop where the build targets it; on AVX-512 hosts
+// the AVX2 loop too) against the portable loop, on random particles, velocities and internal
+// energies after real density and IAD passes, in a periodic and an open box, for every list
+// prefix of some particles.
 template <PairTerms kTerms, bool kVolumeElements>
 void dispatched_momentum_energy_matches_portable(const Dissipation<double>& diss) {
     for (const bool periodic : {true, false}) {
@@ -340,6 +361,18 @@ void dispatched_momentum_energy_matches_portable(const Dissipation<double>& diss
                 ASSERT_NEAR(f.az, r.az, 1e-14 * a_scale) << a << " " << part.count;
                 ASSERT_NEAR(f.du, r.du, 1e-14 * du_scale) << a << " " << part.count;
                 ASSERT_NEAR(f.vsig_max, r.vsig_max, 1e-13 * r.vsig_max) << a << " " << part.count;
+#if defined(EXASPH_SIMD_PAIRS) && defined(__AVX512F__)
+                // The AVX2 lanes as well, which hosts without AVX-512 run.
+                constexpr bool kLimited = kTerms == PairTerms::limited;
+                const auto n =
+                    simd::MomentumEnergyPairs<simd::Avx2, kLimited>(a, view, s.box, k.view(), diss)
+                        .sum(part);
+                ASSERT_NEAR(n.ax, r.ax, 1e-14 * a_scale) << a;
+                ASSERT_NEAR(n.ay, r.ay, 1e-14 * a_scale) << a;
+                ASSERT_NEAR(n.az, r.az, 1e-14 * a_scale) << a;
+                ASSERT_NEAR(n.du, r.du, 1e-14 * du_scale) << a;
+                ASSERT_NEAR(n.vsig_max, r.vsig_max, 1e-13 * r.vsig_max) << a;
+#endif
             });
         EXPECT_GT(checked, s.ps.size());
     }

@@ -1,0 +1,185 @@
+#pragma once
+// The two lane sets of the intrinsic pair loops (sph/simd_lanes.hpp's types) and what the loops
+// build from them: reads through 32-bit indices, a step's lanes split into halves of doubles,
+// the steps over a list, the periodic minimum image, KernelPoly on a step's floats and the
+// branch-free exponential. `Native` is the widest set the build's target has.
+#include "exasph/sph/simd_lanes.hpp"
+
+#ifdef EXASPH_SIMD_PAIRS
+#include <cstdint>
+
+#include "exasph/kernel/kernel_poly.hpp"
+#include "exasph/util/box.hpp"
+#include "exasph/util/branch_free_exp.hpp"
+
+namespace exasph::simd {
+
+// A step of 8 pairs: floats on __m256, doubles in two halves of 4.
+struct Avx2 {
+    using D = D4;
+    using M = M4;
+    using F = F8;
+    using FM = FM8;
+    using H = __m128; // the floats of one half
+    static constexpr int kHalf = 4, kStep = 8;
+    static D splat(double x) { return {_mm256_set1_pd(x)}; }
+    static F splat_f(float x) { return {_mm256_set1_ps(x)}; }
+    // f[i[0..3]]: two scalar loads per 128-bit half. Zen 2 runs these faster than vgatherdpd,
+    // Zen 5 faster than either width of it (docs/performance.md).
+    static EXASPH_INLINE D gather(const double* f, const std::uint32_t* i) {
+        const __m128d lo = _mm_loadh_pd(_mm_load_sd(f + i[0]), f + i[1]);
+        const __m128d hi = _mm_loadh_pd(_mm_load_sd(f + i[2]), f + i[3]);
+        return {_mm256_insertf128_pd(_mm256_castpd128_pd256(lo), hi, 1)};
+    }
+    static EXASPH_INLINE D gather(const float* f, const std::uint32_t* i) {
+        return {_mm256_cvtps_pd(_mm_setr_ps(f[i[0]], f[i[1]], f[i[2]], f[i[3]]))};
+    }
+    static EXASPH_INLINE H to_float(D a) { return _mm256_cvtpd_ps(a.v); }
+    static EXASPH_INLINE F join(H lo, H hi) {
+        return {_mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1)};
+    }
+    // Lanes of half h (0: 0-3, 1: 4-7) as doubles, and as a mask of doubles.
+    static EXASPH_INLINE D half(F a, int h) {
+        return {
+            _mm256_cvtps_pd(h == 0 ? _mm256_castps256_ps128(a.v) : _mm256_extractf128_ps(a.v, 1))};
+    }
+    static EXASPH_INLINE M half(FM m, int h) {
+        const __m128i bits =
+            _mm_castps_si128(h == 0 ? _mm256_castps256_ps128(m.v) : _mm256_extractf128_ps(m.v, 1));
+        return {_mm256_castsi256_pd(_mm256_cvtepi32_epi64(bits))};
+    }
+    static FM all() { return {_mm256_castsi256_ps(_mm256_set1_epi32(-1))}; }
+    static EXASPH_INLINE FM first(std::uint32_t n) { // lanes 0..n-1
+        const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+        return {_mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(int(n)), lane))};
+    }
+};
+
+#ifdef __AVX512F__
+// A step of 16 pairs: floats on __m512, doubles in two halves of 8.
+struct Avx512 {
+    using D = D8;
+    using M = M8;
+    using F = F16;
+    using FM = FM16;
+    using H = __m256;
+    static constexpr int kHalf = 8, kStep = 16;
+    static D splat(double x) { return {_mm512_set1_pd(x)}; }
+    static F splat_f(float x) { return {_mm512_set1_ps(x)}; }
+    // Avx2's reads twice (vgatherdpd was 65 % slower in the density pass on Zen 5).
+    static EXASPH_INLINE D gather(const double* f, const std::uint32_t* i) {
+        return {_mm512_maskz_insertf64x4(kAll8, _mm512_castpd256_pd512(Avx2::gather(f, i).v),
+                                         Avx2::gather(f, i + 4).v, 1)};
+    }
+    static EXASPH_INLINE D gather(const float* f, const std::uint32_t* i) {
+        return {_mm512_maskz_cvtps_pd(kAll8, _mm256_setr_ps(f[i[0]], f[i[1]], f[i[2]], f[i[3]],
+                                                            f[i[4]], f[i[5]], f[i[6]], f[i[7]]))};
+    }
+    static EXASPH_INLINE H to_float(D a) { return _mm512_maskz_cvtpd_ps(kAll8, a.v); }
+    static EXASPH_INLINE F join(H lo, H hi) {
+        return {_mm512_castpd_ps(_mm512_maskz_insertf64x4(
+            kAll8, _mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1))};
+    }
+    static EXASPH_INLINE D half(F a, int h) {
+        const __m256d bits = h == 0 ? _mm512_maskz_extractf64x4_pd(kAll4, _mm512_castps_pd(a.v), 0)
+                                    : _mm512_maskz_extractf64x4_pd(kAll4, _mm512_castps_pd(a.v), 1);
+        return {_mm512_maskz_cvtps_pd(kAll8, _mm256_castpd_ps(bits))};
+    }
+    static EXASPH_INLINE M half(FM m, int h) { return {__mmask8(h == 0 ? m.v : m.v >> 8)}; }
+    static FM all() { return {__mmask16(0xffff)}; }
+    static EXASPH_INLINE FM first(std::uint32_t n) { return {__mmask16((1u << n) - 1u)}; }
+};
+using Native = Avx512;
+#else
+using Native = Avx2;
+#endif
+
+// u . v of a half's lanes of 3-vectors.
+template <class D>
+EXASPH_INLINE D dot3(const D (&u)[3], const D (&v)[3]) {
+    return fma(u[2], v[2], fma(u[1], v[1], u[0] * v[0]));
+}
+
+// Runs step(indices, valid) over a list V::kStep pairs at a time; `valid` marks the lanes that
+// hold a pair. The last pairs form one step whose empty lanes hold `self` (a's own index: a
+// valid read, masked off by the loops), instead of a scalar remainder.
+template <class V, class Step>
+EXASPH_INLINE void for_each_step(const std::uint32_t* index, std::uint32_t count,
+                                 std::uint32_t self, Step&& step) {
+    constexpr std::uint32_t kStep = V::kStep;
+    std::uint32_t n = 0;
+    for (; n + kStep <= count; n += kStep) step(index + n, V::all());
+    if (n == count) return;
+    const std::uint32_t left = count - n;
+    std::uint32_t idx[kStep];
+    for (std::uint32_t j = 0; j < kStep; ++j) idx[j] = j < left ? index[n + j] : self;
+    step(idx, V::first(left));
+}
+
+// PeriodicImage on one half's lanes of one axis: d - L where d > L/2, d + L where d < -L/2 (the
+// scalar operator's comparisons and single rounding; an open axis has L = 0, L/2 = infinity).
+template <class V>
+struct Image {
+    using D = typename V::D;
+    D len[3], half[3], neg_half[3];
+    explicit Image(const PeriodicImage<double>& im) {
+        for (int d = 0; d < 3; ++d) {
+            len[d] = V::splat(im.len[d]);
+            half[d] = V::splat(im.half[d]);
+            neg_half[d] = V::splat(-im.half[d]);
+        }
+    }
+    EXASPH_INLINE D operator()(D d, int axis) const {
+        d = d - select(d > half[axis], len[axis]);
+        return d + select(d < neg_half[axis], len[axis]);
+    }
+};
+
+// The powers of t = min(s, 4)/2 - 1 that KernelPoly's Estrin scheme uses, shared by the
+// polynomials evaluated at one s.
+template <class V>
+struct PolyPowers {
+    using F = typename V::F;
+    F t, t2, t4, t8;
+    EXASPH_INLINE explicit PolyPowers(F s) {
+        // min returns 4 for a NaN s, as the scalar does
+        t = fma(min(s, V::splat_f(4.0f)), V::splat_f(0.5f), V::splat_f(-1.0f));
+        t2 = t * t, t4 = t2 * t2, t8 = t4 * t4;
+    }
+};
+
+// KernelPoly<float>'s coefficients, each broadcast once per particle (a broadcast per
+// coefficient and step was a fifth of the density loop's instructions), evaluated before its
+// factor (s < 4) in the scalar's order of fused multiply-adds, so every lane rounds as it does.
+template <class V>
+struct PolyLanes {
+    using F = typename V::F;
+    static constexpr int kTerms = KernelPoly<float>::kTerms;
+    F c[kTerms];
+    explicit PolyLanes(const KernelPoly<float>& k) {
+        for (int i = 0; i < kTerms; ++i) c[i] = V::splat_f(k.c[i]);
+    }
+    EXASPH_INLINE F operator()(const PolyPowers<V>& w) const {
+        static_assert(kTerms == 16, "written out for 16 terms, as KernelPoly<float>");
+        auto pair = [&](int i) { return fma(c[i + 1], w.t, c[i]); };
+        const F q0 = fma(pair(2), w.t2, pair(0)), q1 = fma(pair(6), w.t2, pair(4));
+        const F q2 = fma(pair(10), w.t2, pair(8)), q3 = fma(pair(14), w.t2, pair(12));
+        return fma(fma(q3, w.t4, q2), w.t8, fma(q1, w.t4, q0));
+    }
+};
+
+// exp_nonpositive (util/branch_free_exp.hpp) on one half's lanes, step for step.
+template <class V>
+EXASPH_INLINE typename V::D exp_nonpositive(typename V::D x) {
+    using D = typename V::D;
+    const D floor = V::splat(-700.0);
+    x = blend(x < floor, x, floor); // a NaN stays a NaN
+    const D k = round_nearest(x * V::splat(kLog2e));
+    const D r = (x - k * V::splat(kLn2Hi)) - k * V::splat(kLn2Lo);
+    D series = V::splat(kExpSeries[0]);
+    for (int j = 1; j < kExpSeriesTerms; ++j) series = fma(series, r, V::splat(kExpSeries[j]));
+    return series * shift_to_exponent((k + V::splat(1023.0)) + V::splat(0x1p52));
+}
+
+} // namespace exasph::simd
+#endif
