@@ -84,10 +84,10 @@ inline std::uint32_t expand_mask(std::uint32_t mask, std::uint32_t first, std::u
     const auto m0 = __mmask16(mask & 0xFFFFu);
     _mm512_storeu_si512(out, _mm512_maskz_compress_epi32(m0, lo));
     const auto c0 = std::uint32_t(std::popcount(mask & 0xFFFFu));
-    if (mask >> 16) {
-        const __m512i hi = _mm512_add_epi32(lo, _mm512_set1_epi32(16));
-        _mm512_storeu_si512(out + c0, _mm512_maskz_compress_epi32(__mmask16(mask >> 16), hi));
-    }
+    // the upper half whatever it holds: a branch on it mispredicted at leaves of 16-32 particles
+    // (each SPH pass 2-3 % faster on Zen 5); out has room for 32 more indices than the count
+    const __m512i hi = _mm512_add_epi32(lo, _mm512_set1_epi32(16));
+    _mm512_storeu_si512(out + c0, _mm512_maskz_compress_epi32(__mmask16(mask >> 16), hi));
     return std::uint32_t(std::popcount(mask));
 #elif defined(__AVX2__)
     // AVX2 has no compress: each byte of the mask picks a row of kByteBits (its set bits'
