@@ -58,6 +58,21 @@ TEST(NeighbourCodec, BitsAndMaskExpansion) {
         ASSERT_EQ(c + 3, want.size()) << std::hex << mask;
         ASSERT_TRUE(std::equal(want.begin(), want.end(), out.begin())) << std::hex << mask;
     }
+    // The decoder's 32-bit unit (both halves expanded whatever they hold): random masks, with
+    // an empty, a sparse or a full upper half, appended after earlier output.
+    for (int k = 0; k < 200000; ++k) {
+        std::uint32_t mask = rng();
+        if (k % 3 == 0) mask &= 0xFFFFu;
+        if (k % 3 == 1) mask &= rng() | 0xFFFFu;
+        if (k % 5 == 0) mask |= 0xFFFF0000u;
+        out.assign(64 + 3, 7u);
+        const std::uint32_t c = codec::expand_mask32(mask, 900, out.data() + 3);
+        std::vector<std::uint32_t> want(3, 7u);
+        for (std::uint32_t b = 0; b < 32; ++b)
+            if (mask >> b & 1u) want.push_back(900 + b);
+        ASSERT_EQ(c + 3, want.size()) << std::hex << mask;
+        ASSERT_TRUE(std::equal(want.begin(), want.end(), out.begin())) << std::hex << mask;
+    }
 }
 
 TEST(NeighbourCodec, ArenaKeepsRecordsInPlaceAcrossBlocks) {
