@@ -3,6 +3,7 @@
 // search's order, and the storage stays far below a fixed-stride layout.
 #include <algorithm>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -72,6 +73,34 @@ TEST(NeighbourCodec, BitsAndMaskExpansion) {
             if (mask >> b & 1u) want.push_back(900 + b);
         ASSERT_EQ(c + 3, want.size()) << std::hex << mask;
         ASSERT_TRUE(std::equal(want.begin(), want.end(), out.begin())) << std::hex << mask;
+    }
+}
+
+// BitWriter (the search's record writer, which stores its low word on every put): fields of 1
+// to 32 bits read back with load_bits, nothing written past the record's padding.
+TEST(NeighbourCodec, BitWriterRoundTripWithinThePadding) {
+    std::mt19937 rng(11);
+    for (int trial = 0; trial < 2000; ++trial) {
+        std::vector<std::pair<std::uint32_t, unsigned>> fields(1 + rng() % 40);
+        std::uint64_t total = 0;
+        for (auto& [v, n] : fields) {
+            n = 1 + rng() % 32;
+            v = std::uint32_t(rng()) & std::uint32_t((std::uint64_t(1) << n) - 1);
+            total += n;
+        }
+        const std::size_t bytes = (total + 7) / 8;
+        std::vector<std::uint8_t> rec(bytes + codec::kReadPad + 16, 0xCD);
+        codec::BitWriter out(rec.data());
+        for (const auto& [v, n] : fields) out.put(v, n);
+        out.align();
+        std::uint64_t pos = 0;
+        for (const auto& [v, n] : fields) {
+            ASSERT_EQ(codec::load_bits(rec.data(), pos, n), v) << trial << " at bit " << pos;
+            pos += n;
+        }
+        for (std::size_t b = bytes + codec::kReadPad; b < rec.size(); ++b)
+            ASSERT_EQ(rec[b], 0xCD)
+                << trial << ": byte " << b << " of a " << bytes << "-byte record";
     }
 }
 
