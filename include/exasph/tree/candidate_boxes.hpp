@@ -5,7 +5,7 @@
 #include <type_traits>
 #include <vector>
 
-#if defined(__AVX2__) && defined(__FMA__)
+#if (defined(__AVX2__) && defined(__FMA__)) || defined(__AVX512F__)
 #include <immintrin.h>
 #endif
 
@@ -31,8 +31,13 @@ struct CandidateBoxes {
     std::vector<std::uint32_t> begin, size;
     std::vector<unsigned char> reached, wraps;
     std::vector<std::uint64_t> reached_words; // bit l: candidate l reached
+    bool any_wraps = false;                   // some wraps[l]
     // The box arrays hold whole steps of kLanes: the padding's boxes lie at infinity.
+#if defined(__AVX512F__)
+    static constexpr std::size_t kLanes = 8;
+#else
     static constexpr std::size_t kLanes = 4;
+#endif
     void assign(const std::vector<const OctreeNode<T>*>& leaves, const OctreeNode<T>& group,
                 const PeriodicImage<T>& im) {
         const std::size_t n = leaves.size(), padded = (n + kLanes - 1) / kLanes * kLanes;
@@ -62,6 +67,7 @@ struct CandidateBoxes {
             }
             wraps[l] = w;
         }
+        any_wraps = std::find(wraps.begin(), wraps.end(), (unsigned char)1) != wraps.end();
     }
 };
 
@@ -91,7 +97,55 @@ EXASPH_INLINE const unsigned char* mark_reached_leaves(CandidateBoxes<T>& boxes,
     return reached;
 }
 
-#if defined(__AVX2__) && defined(__FMA__)
+#if defined(__AVX512F__)
+#define EXASPH_LEAF_BOXES_AVX512 1
+// reached_leaf_bits on eight candidates per step, with the minimum image only where some leaf
+// of the group may need it (kWrap: CandidateBoxes::any_wraps; elsewhere the image changes no
+// centre's offset, by the argument of CandidateBoxes::wraps, so the bits are the same). The
+// arithmetic of reached_leaf_bits_avx2.
+template <bool kWrap>
+void reached_leaf_bits_avx512(const CandidateBoxes<double>& boxes, std::size_t nleaves,
+                              const double (&pos)[3], double hi, bool symmetric,
+                              const PeriodicImage<double>& im, std::uint64_t* words) {
+    __m512d p[3], len[3], half[3], neg_half[3];
+    for (int d = 0; d < 3; ++d) {
+        p[d] = _mm512_set1_pd(pos[d]);
+        len[d] = _mm512_set1_pd(im.len[d]);
+        half[d] = _mm512_set1_pd(im.half[d]);
+        neg_half[d] = _mm512_set1_pd(-im.half[d]);
+    }
+    const __m512d vhi = _mm512_set1_pd(hi), zero = _mm512_setzero_pd(), two = _mm512_set1_pd(2.0);
+    constexpr __mmask8 kAll = 0xff; // zero-masking forms: GCC 12's bug 105593 (leaf_scan.hpp)
+    for (std::size_t w = 0; w < (nleaves + 63) / 64; ++w) {
+        std::uint64_t word = 0;
+        const std::size_t end = std::min(nleaves, 64 * w + 64);
+        for (std::size_t l = 64 * w; l < end; l += 8) {
+            __m512d r2 = zero;
+            for (int d = 0; d < 3; ++d) {
+                __m512d x = _mm512_sub_pd(_mm512_loadu_pd(boxes.c[d].data() + l), p[d]);
+                if constexpr (kWrap) {
+                    x = _mm512_mask_sub_pd(x, _mm512_cmp_pd_mask(x, half[d], _CMP_GT_OQ), x,
+                                           len[d]);
+                    x = _mm512_mask_add_pd(x, _mm512_cmp_pd_mask(x, neg_half[d], _CMP_LT_OQ), x,
+                                           len[d]);
+                }
+                __m512d g = _mm512_sub_pd(_mm512_abs_pd(x), _mm512_loadu_pd(boxes.e[d].data() + l));
+                g = _mm512_maskz_mov_pd(_mm512_cmp_pd_mask(g, zero, _CMP_GT_OQ), g);
+                r2 = _mm512_fmadd_pd(g, g, r2);
+            }
+            const __m512d h =
+                symmetric ? _mm512_maskz_max_pd(kAll, vhi, _mm512_loadu_pd(boxes.hmax.data() + l))
+                          : vhi;
+            const __m512d reach = _mm512_mul_pd(two, h);
+            const __mmask8 hit = _mm512_cmp_pd_mask(r2, _mm512_mul_pd(reach, reach), _CMP_LT_OQ);
+            word |= std::uint64_t(hit) << (l - 64 * w);
+        }
+        // The padding's lanes: never reached, even for a NaN position (whose gaps clamp to 0)
+        const std::size_t valid = end - 64 * w;
+        words[w] = valid < 64 ? word & ((std::uint64_t(1) << valid) - 1) : word;
+    }
+}
+#elif defined(__AVX2__) && defined(__FMA__)
 #define EXASPH_LEAF_BOXES_AVX2 1
 // mark_reached_leaves on four candidates per step, as bits (GCC left the portable loop scalar:
 // doubles in, bytes out). The same arithmetic: the minimum image, the gap to the inflated box
@@ -142,7 +196,15 @@ EXASPH_INLINE const std::uint64_t* reached_leaf_bits(CandidateBoxes<T>& boxes, s
                                                      const T (&pos)[3], T hi, bool symmetric,
                                                      const PeriodicImage<T>& im) {
     std::uint64_t* words = boxes.reached_words.data();
-#if defined(EXASPH_LEAF_BOXES_AVX2)
+#if defined(EXASPH_LEAF_BOXES_AVX512)
+    if constexpr (std::is_same_v<T, double>) {
+        if (boxes.any_wraps)
+            reached_leaf_bits_avx512<true>(boxes, nleaves, pos, hi, symmetric, im, words);
+        else
+            reached_leaf_bits_avx512<false>(boxes, nleaves, pos, hi, symmetric, im, words);
+        return words;
+    }
+#elif defined(EXASPH_LEAF_BOXES_AVX2)
     if constexpr (std::is_same_v<T, double>) {
         reached_leaf_bits_avx2(boxes, nleaves, pos, hi, symmetric, im, words);
         return words;

@@ -234,9 +234,7 @@ class NeighbourLists {
                 reads_halos_[g] = candidates.size() > owned_candidates;
                 boxes.assign(candidates, group, image);
                 rec.clear();
-                const bool wraps = std::find(boxes.wraps.begin(), boxes.wraps.end(),
-                                             (unsigned char)1) != boxes.wraps.end();
-                out_of_order |= !encode_candidates(candidates, wraps, rec);
+                out_of_order |= !encode_candidates(candidates, boxes.any_wraps, rec);
                 for (std::uint32_t s = group_begin(g); s < group_end(g); ++s) {
                     const std::uint32_t c =
                         encode_neighbours(boxes, p, image, crit, member(s), rec);
