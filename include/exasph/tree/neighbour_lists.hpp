@@ -116,12 +116,14 @@ class NeighbourLists {
             std::uint64_t pos = 0;
             std::uint32_t count = 0;
             std::uint32_t* out = index_.data();
+            // (locals: through `out`'s stores the vectors' data would be reloaded every leaf)
+            const std::uint32_t *firsts = first_.data(), *sizes = size_.data();
             for (std::uint32_t w = 0; w < ncand_; w += 64) {
                 std::uint64_t word = codec::load_word(reached + w / 8, std::min(64u, ncand_ - w));
                 while (word) {
                     const std::uint32_t l = w + std::uint32_t(std::countr_zero(word));
                     word &= word - 1;
-                    const std::uint32_t first = first_[l], size = size_[l];
+                    const std::uint32_t first = firsts[l], size = sizes[l];
                     for (std::uint32_t o = 0; o < size; o += 32) {
                         const unsigned n = std::min(32u, size - o);
                         count += codec::expand_mask32(codec::load_bits(hits, pos + o, n), first + o,
