@@ -19,23 +19,13 @@ rounds=${ROUNDS:-3}
 steps=${STEPS:-7}
 configs=${CONFIGS:-"1x2 2x1"}
 schemes=${SCHEMES:-"std ve"}
-if [ -n "$ref" ] && [ ! -x "$ref" ]; then
-    echo "compare.sh: the reference binary '$ref' is not an executable" >&2
-    exit 2
-fi
 if [ "$steps" -lt 3 ]; then
     echo "compare.sh: STEPS must be at least 3 (steps 2.. are timed)" >&2
     exit 2
 fi
-if [ -n "${EXASPH_BIN:-}" ]; then
-    [ -x "$EXASPH_BIN" ] || { echo "compare.sh: EXASPH_BIN '$EXASPH_BIN' is not an executable" >&2; exit 2; }
-    exe=$(cd "$(dirname "$EXASPH_BIN")" && pwd)/$(basename "$EXASPH_BIN")
-else
-    bash "$root/scripts/setup.sh" >/dev/null
-    exe="${EXASPH_BUILD_DIR:-$root/build}/exasph"
-fi
-timings=(/usr/bin/python3 "$root/bench/step_timings.py")
 . "$root/bench/lib.sh"
+beside_reference compare.sh "$ref"
+timings=(/usr/bin/python3 "$root/bench/step_timings.py")
 mpi=(mpirun --oversubscribe --bind-to none)
 [ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
 tmp=$(mktemp -d)

@@ -28,3 +28,21 @@ one_thread_ranks() {
         [ "$(id -u)" = 0 ] && mpi+=(--allow-run-as-root)
     fi
 }
+
+# beside_reference SCRIPT REF: for the scripts that run exasph beside a reference binary
+# (compare.sh, time_to_solution.sh): checks REF (may be empty: no reference) and sets `exe` to
+# exasph: $EXASPH_BIN as it is, else the tree built by scripts/setup.sh in $EXASPH_BUILD_DIR or
+# build/ ($root: the repository).
+beside_reference() {
+    if [ -n "$2" ] && [ ! -x "$2" ]; then
+        echo "$1: the reference binary '$2' is not an executable" >&2
+        exit 2
+    fi
+    if [ -n "${EXASPH_BIN:-}" ]; then
+        [ -x "$EXASPH_BIN" ] || { echo "$1: EXASPH_BIN '$EXASPH_BIN' is not an executable" >&2; exit 2; }
+        exe=$(cd "$(dirname "$EXASPH_BIN")" && pwd)/$(basename "$EXASPH_BIN")
+    else
+        bash "$root/scripts/setup.sh" >/dev/null
+        exe="${EXASPH_BUILD_DIR:-$root/build}/exasph"
+    fi
+}

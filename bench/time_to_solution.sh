@@ -17,18 +17,8 @@ side=${SIDE:-50}
 t_end=${T_END:-0.05}
 rounds=${ROUNDS:-3}
 threads=${THREADS:-2}
-if [ -n "$ref" ] && [ ! -x "$ref" ]; then
-    echo "time_to_solution.sh: the reference binary '$ref' is not an executable" >&2
-    exit 2
-fi
-if [ -n "${EXASPH_BIN:-}" ]; then
-    [ -x "$EXASPH_BIN" ] || { echo "time_to_solution.sh: EXASPH_BIN '$EXASPH_BIN' is not an executable" >&2; exit 2; }
-    exe=$(cd "$(dirname "$EXASPH_BIN")" && pwd)/$(basename "$EXASPH_BIN")
-else
-    bash "$root/scripts/setup.sh" >/dev/null
-    exe="${EXASPH_BUILD_DIR:-$root/build}/exasph"
-fi
 . "$root/bench/lib.sh"
+beside_reference time_to_solution.sh "$ref"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
