@@ -13,12 +13,14 @@
 #     tests and short runs of every scheme, label sanitize.
 # EXASPH_SKIP_SERIAL=1 / EXASPH_SKIP_MPICH=1 / EXASPH_SKIP_SANITIZE=1 skip builds 1 / 3 / 4 (with
 # 1 skipped, build/ runs everything).
+# build/ gets the CUDA backend wherever nvcc is found (-UEXASPH_CUDA: CMake's default again, also
+# where scripts/run.sh configured build/ without it on a machine without a GPU).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 single_rank=ON # build/ builds and runs the single-rank tests unless build-serial/ runs them
 [ $# -eq 0 ] && [ -z "${EXASPH_SKIP_SERIAL:-}" ] && single_rank=OFF
 EXASPH_TEST_PACKAGES="python3-paraview xvfb python3-pip libmpich-dev mpich" \
-    EXASPH_CONFIGURE_ARGS="-DEXASPH_SINGLE_RANK_TESTS=$single_rank" bash "$root/scripts/setup.sh"
+    EXASPH_CONFIGURE_ARGS="-DEXASPH_SINGLE_RANK_TESTS=$single_rank -UEXASPH_CUDA" bash "$root/scripts/setup.sh"
 full="${EXASPH_BUILD_DIR:-$root/build}"
 if [ $# -gt 0 ]; then
     cd "$full"
