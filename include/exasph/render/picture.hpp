@@ -77,22 +77,29 @@ inline Canvas picture(const std::vector<double>& image, int nx, int ny, bool log
         if (log) return x > 0 ? std::log(x / lo) / std::log(hi / lo) : NAN;
         return (x - lo) / (hi - lo);
     };
-    constexpr int kBar = 24, kGap = 12, kLabels = 100, kScale = 2;
-    Canvas cv(nx + kGap + kBar + kLabels, std::max(ny, 60));
+    const double mid = log ? std::sqrt(lo * hi) : 0.5 * (lo + hi);
+    const double values[3] = {hi, mid, lo};
+    std::string labels[3];
+    std::size_t longest = 0;
+    for (int k = 0; k < 3; ++k) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3g", values[k]);
+        labels[k] = text, longest = std::max(longest, labels[k].size());
+    }
+    // The labels' column fits the longest (6 scaled pixels a character, 6 before, 4 after):
+    // "-5.57e+04" is 9 characters.
+    constexpr int kBar = 24, kGap = 12, kScale = 2;
+    const int label_width = 10 + 6 * kScale * int(longest);
+    Canvas cv(nx + kGap + kBar + label_width, std::max(ny, 60));
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i)
             cv.set(i, ny - 1 - j, colour_of(scaled(image[std::size_t(j) * nx + i])));
     for (int y = 0; y < ny; ++y)
         for (int x = 0; x < kBar; ++x)
             cv.set(nx + kGap + x, y, colour_of(1.0 - double(y) / (ny - 1)));
-    const double mid = log ? std::sqrt(lo * hi) : 0.5 * (lo + hi);
-    const double values[3] = {hi, mid, lo};
     const int ys[3] = {0, ny / 2 - 7, ny - 7 * kScale};
-    for (int k = 0; k < 3; ++k) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.3g", values[k]);
-        draw_text(cv, nx + kGap + kBar + 6, std::max(0, ys[k]), text, kScale);
-    }
+    for (int k = 0; k < 3; ++k)
+        draw_text(cv, nx + kGap + kBar + 6, std::max(0, ys[k]), labels[k], kScale);
     return cv;
 }
 
