@@ -32,8 +32,10 @@ inline std::vector<Field> snapshot_field_list(const std::vector<std::string>& na
                                [&](const FieldInfo& f) { return f.name == n; });
         if (it == kFieldTable.end()) {
             std::string known;
-            for (const auto& f : kFieldTable)
-                known += (known.empty() ? "" : ",") + std::string(f.name);
+            for (const auto& f : kFieldTable) {
+                if (!known.empty()) known += ',';
+                known += f.name;
+            }
             throw input_error("-f: unknown field '" + n + "' (known: " + known + ")", true);
         }
         if ((it->roles & kHaloGrad) && !with_gradient)

@@ -1,6 +1,7 @@
 #pragma once
-#include <cstdio>
 #include <filesystem>
+#include <iomanip>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -51,23 +52,24 @@ inline std::string render_xdmf(const std::string& h5_name, const RenderPlane& g,
     origin[2 - g.u] = g.lo[0] + 0.5 * g.d[0], origin[2 - g.v] = g.lo[1] + 0.5 * g.d[1];
     origin[2 - g.w] = g.at;
     spacing[2 - g.u] = g.d[0], spacing[2 - g.v] = g.d[1], spacing[2 - g.w] = 1.0;
-    char buf[640];
-    std::snprintf(buf, sizeof buf,
-                  "    <Grid Name=\"render\" GridType=\"Uniform\">\n"
-                  "      <Time Value=\"%.17g\"/>\n"
-                  "      <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"%d %d %d\"/>\n"
-                  "      <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n"
-                  "        <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n"
-                  "        <DataItem Dimensions=\"3\" Format=\"XML\">%.17g %.17g %.17g</DataItem>\n"
-                  "      </Geometry>\n"
-                  "      <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-                  "        <DataItem Dimensions=\"%d %d %d\" NumberType=\"Float\" Precision=\"8\" "
-                  "Format=\"HDF\">%s:/image</DataItem>\n"
-                  "      </Attribute>\n    </Grid>\n",
-                  time, dims[0], dims[1], dims[2], origin[0], origin[1], origin[2], spacing[0],
-                  spacing[1], spacing[2], s.field.c_str(), dims[0], dims[1], dims[2],
-                  h5_name.c_str());
-    return xdmf_document(buf);
+    // A stream, not a fixed buffer: the field and file names have no length limit.
+    std::ostringstream xml;
+    xml << std::setprecision(17); // as %.17g: every double read back exactly
+    const auto triple = [&](const auto* v) { xml << v[0] << ' ' << v[1] << ' ' << v[2]; };
+    xml << "    <Grid Name=\"render\" GridType=\"Uniform\">\n      <Time Value=\"" << time
+        << "\"/>\n      <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"";
+    triple(dims);
+    xml << "\"/>\n      <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n"
+           "        <DataItem Dimensions=\"3\" Format=\"XML\">";
+    triple(origin);
+    xml << "</DataItem>\n        <DataItem Dimensions=\"3\" Format=\"XML\">";
+    triple(spacing);
+    xml << "</DataItem>\n      </Geometry>\n      <Attribute Name=\"" << s.field
+        << "\" AttributeType=\"Scalar\" Center=\"Node\">\n        <DataItem Dimensions=\"";
+    triple(dims);
+    xml << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5_name
+        << ":/image</DataItem>\n      </Attribute>\n    </Grid>\n";
+    return xdmf_document(xml.str());
 }
 
 // PREFIX.png, PREFIX.h5 and PREFIX.xdmf (rank 0).
