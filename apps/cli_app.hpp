@@ -7,7 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli_parameters.hpp"
-#include "exasph/build_info.hpp"
+#include "exasph/run/version.hpp"
 #include "exasph/cases/registry.hpp"
 #include "exasph/io/initial_conditions_file.hpp"
 #include "exasph/io/particle_io.hpp"
@@ -47,7 +47,7 @@ inline void add_options(CLI::App& app, Config& cfg) {
     auto* f = app.get_option("--fields");
     f->description(f->get_description() + " (all: " + fields + ")");
     app.footer(cases_help());
-    app.set_version_flag("--version", std::string("exasph ") + kVersion + " (" + kBuildInfo + ")");
+    app.set_version_flag("--version", version_text());
 }
 
 // After a successful parse: the restart rule, then a new run's scheme defaults.

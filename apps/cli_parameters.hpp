@@ -60,7 +60,7 @@ CLI::Option* add_choice(CLI::App& app, const Param& p, const std::string& help, 
             },
             help)
         ->check(CLI::IsMember(names, CLI::ignore_case))
-        ->default_str(std::string(choice_name(value)));
+        ->default_str(p.show_default ? std::string(choice_name(value)) : std::string());
 }
 
 inline CLI::Option* add_custom(CLI::App& app, const Param& p, const std::string& help,
@@ -101,7 +101,8 @@ inline CLI::Option* add_parameter(CLI::App& app, const Param& p, Config& cfg) {
                     if constexpr (std::is_same_v<V, std::vector<std::string>>)
                         if (p.delimiter) o->delimiter(p.delimiter);
                     apply_range<V>(o, p.range);
-                    if (p.show_default) o->capture_default_str();
+                    // A scheme's parameter has no one default: its help says each scheme's.
+                    if (p.show_default && !set_by_scheme(p.key)) o->capture_default_str();
                     return o;
                 }
             }

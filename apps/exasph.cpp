@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("glass")) return finish(run_glass(cl.glass));
         if (app.got_subcommand("exact")) return finish(run_exact(cl.exact));
         if (app.got_subcommand("render")) return finish(run_render(cl.render));
+        if (app.got_subcommand("options")) return finish(run_options(app));
         if (!cl.config_file.empty()) exasph::cli::apply_config_file(app, cl.config_file);
         exasph::cli::finish_configuration(app, cfg);
         return finish(exasph::run(cfg, std::cout));

@@ -1,5 +1,6 @@
 #pragma once
-// The subcommands of the command line: `exasph glass`, `exasph exact` and `exasph render`.
+// The subcommands of the command line: `exasph glass`, `exasph exact`, `exasph render` and
+// `exasph options`.
 #include <cstdio>
 #include <string>
 
@@ -10,6 +11,7 @@
 #include "exasph/exact/noh.hpp"
 #include "exasph/exact/sedov.hpp"
 #include "exasph/glass/glass.hpp"
+#include "options_command.hpp"
 #include "render_command.hpp"
 
 // `exasph glass`: make a periodic glass block and report its density scatter.
@@ -115,7 +117,7 @@ inline int run_exact(const ExactCommand& ec) {
     return 0;
 }
 
-// The whole command line: the run's options (cli_app.hpp) and the two subcommands. Used by
+// The whole command line: the run's options (cli_app.hpp) and the subcommands. Used by
 // exasph.cpp and the command-line fuzzer.
 struct CommandLine {
     exasph::Config cfg;
@@ -136,6 +138,7 @@ struct CommandLine {
         add_glass_command(app, glass);
         add_exact_command(app, exact);
         add_render_command(app, render);
+        add_options_command(app);
         app.require_subcommand(0, 1);
     }
 };

@@ -13,6 +13,8 @@
 #     tests and short runs of every scheme, label sanitize.
 # EXASPH_SKIP_SERIAL=1 / EXASPH_SKIP_MPICH=1 / EXASPH_SKIP_SANITIZE=1 skip builds 1 / 3 / 4 (with
 # 1 skipped, build/ runs everything).
+# Every build treats compiler warnings as errors (EXASPH_WERROR; nvcc's device code always does),
+# so that a new warning fails CI.
 # build/ gets the CUDA backend wherever nvcc is found (-UEXASPH_CUDA: CMake's default again, also
 # where scripts/run.sh configured build/ without it on a machine without a GPU).
 set -euo pipefail
@@ -20,7 +22,8 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 single_rank=ON # build/ builds and runs the single-rank tests unless build-serial/ runs them
 [ $# -eq 0 ] && [ -z "${EXASPH_SKIP_SERIAL:-}" ] && single_rank=OFF
 EXASPH_TEST_PACKAGES="python3-paraview xvfb python3-pip libmpich-dev mpich" \
-    EXASPH_CONFIGURE_ARGS="-DEXASPH_SINGLE_RANK_TESTS=$single_rank -UEXASPH_CUDA" bash "$root/scripts/setup.sh"
+    EXASPH_CONFIGURE_ARGS="-DEXASPH_SINGLE_RANK_TESTS=$single_rank -UEXASPH_CUDA -DEXASPH_WERROR=ON" \
+    bash "$root/scripts/setup.sh"
 full="${EXASPH_BUILD_DIR:-$root/build}"
 if [ $# -gt 0 ]; then
     cd "$full"
@@ -34,7 +37,7 @@ build_in() {
     if [ ! -f "$dir/CMakeCache.txt" ]; then
         local generator=()
         command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
-        cmake -S "$root" -B "$dir" "${generator[@]}" -DEXASPH_BENCH=OFF "$@"
+        cmake -S "$root" -B "$dir" "${generator[@]}" -DEXASPH_BENCH=OFF -DEXASPH_WERROR=ON "$@"
     fi
     cmake --build "$dir" -j "$(nproc)"
 }
@@ -57,7 +60,7 @@ if [ -z "${EXASPH_SKIP_MPICH:-}" ]; then
         generator=()
         command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
         cmake -S "$root" -B "$mpich" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DEXASPH_HDF5=OFF \
-            -DEXASPH_CUDA=OFF -DEXASPH_BENCH=OFF -DEXASPH_SINGLE_RANK_TESTS=OFF \
+            -DEXASPH_CUDA=OFF -DEXASPH_BENCH=OFF -DEXASPH_SINGLE_RANK_TESTS=OFF -DEXASPH_WERROR=ON \
             -DMPI_CXX_COMPILER=/usr/bin/mpicxx.mpich -DMPIEXEC_EXECUTABLE=/usr/bin/mpiexec.mpich
     fi
     cmake --build "$mpich" -j "$(nproc)" --target test_mpi_domain test_mpi_square_patch \

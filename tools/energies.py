@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Energy curves of one or more exasph runs from their diagnostics.csv: kinetic, internal,
-potential and total energy against time, as a PNG (e.g. the Evrard collapse, SPEC 9.4).
+potential and total energy against time, as a PNG (e.g. the Evrard collapse, physics.md §9.4).
 
     /usr/bin/python3 tools/energies.py RUN/diagnostics.csv [RUN2/diagnostics.csv ...] \
         [-o energies.png] [--label NAME ...] [--title TEXT] [--reference CURVES.csv]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The Evrard collapse against its reference data (../shared/reference/evrard: a converged 1D
+"""The Evrard collapse against its reference data (tests/data/evrard: a converged 1D
 spherical computation and profiles digitised from Evrard 1988 / Steinmetz & Mueller 1993).
 
     /usr/bin/python3 tools/evrard.py RUN_DIR [RUN_DIR ...] [--label A ...] [-o evrard]
@@ -86,8 +86,8 @@ def main():
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--label", action="append")
     ap.add_argument("-o", "--output", default="evrard", help="prefix of the two PNG files")
-    ap.add_argument("--reference", default=str(Path(__file__).resolve().parents[2] / "shared" /
-                                                "reference" / "evrard"))
+    ap.add_argument("--reference", default=str(Path(__file__).resolve().parents[1] / "tests" /
+                                                "data" / "evrard"))
     args = ap.parse_args()
     labels = args.label or [Path(r).name for r in args.runs]
     if len(labels) != len(args.runs):

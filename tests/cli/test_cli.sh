@@ -22,7 +22,7 @@ echo "$out" | grep -q "particle-steps/s" || fail "no summary"
 # beside a scheme keep their values.
 header() { "$exe" "$@" -s 0 --lattice --out "$work/scheme" 2>&1 | grep '^physics:'; }
 h=$(header --init square-patch -n 8)
-echo "$h" | grep -q "scheme wc, ng0 250, ngmax 300,.*conductivity 0, av_limiter off, volume_elements off, energy_weights off, tensile_stress 0.3, tensile_exponent 6, tensile_stress_positive 0.03, torque_free on, double_precision on" ||
+echo "$h" | grep -q "scheme wc, ng0 250, ngmax 375,.*conductivity 0, av_limiter off, volume_elements off, energy_weights off, tensile_stress 0.3, tensile_exponent 6, tensile_stress_positive 0.03, torque_free on, double_precision on" ||
     fail "square-patch should default to the wc scheme: $h"
 h=$(header --init square-patch -n 8 --scheme std)
 echo "$h" | grep -q "scheme std, ng0 100, ngmax 150,.*volume_elements off, energy_weights off, tensile_stress 0, tensile_exponent 4, tensile_stress_positive 0, torque_free off, double_precision off" ||

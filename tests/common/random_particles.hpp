@@ -8,7 +8,7 @@
 namespace exasph::testref {
 
 // `side`^3 particles on a lattice at cell centres of the unit-density periodic box [0, side)^3
-// (spacing 1, mass 1), h from the SPEC 9.1 rule for ng0 neighbours.
+// (spacing 1, mass 1), h from the physics.md §9.1 rule for ng0 neighbours.
 inline ParticleSet<double> periodic_lattice(int side, double ng0, Box<double>& box) {
     box.lo = {0, 0, 0};
     box.hi = {double(side), double(side), double(side)};

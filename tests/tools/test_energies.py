@@ -2,7 +2,7 @@
 """tools/energies.py writes a non-trivial PNG from the diagnostics of an Evrard run (the
 potential energy column is filled, the snapshot carries phi) and exits 2 with a clear message on
 a missing or malformed file. tools/evrard.py puts the run beside the reference data
-(../shared/reference/evrard) and prints the 1D computation's numbers."""
+(tests/data/evrard) and prints the 1D computation's numbers."""
 import argparse
 import subprocess
 import sys

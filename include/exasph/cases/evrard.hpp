@@ -10,10 +10,10 @@
 
 namespace exasph {
 
-// Evrard collapse (SPEC 9.4): a cold self-gravitating gas sphere at rest with rho = M/(2 pi R^2 r)
-// (so M(r) = M r^2 / R^2), u = 0.05 G M / R, gamma = 5/3. -n counts points across the diameter of
-// the uniform sphere that is stretched into this profile: a point at radius s (of R) moves along
-// its ray to r = R s^(3/2), which maps uniform enclosed mass s^3 onto r^2 / R^2.
+// Evrard collapse (physics.md §9.4): a cold self-gravitating gas sphere at rest with rho = M/(2 pi
+// R^2 r) (so M(r) = M r^2 / R^2), u = 0.05 G M / R, gamma = 5/3. -n counts points across the
+// diameter of the uniform sphere that is stretched into this profile: a point at radius s (of R)
+// moves along its ray to r = R s^(3/2), which maps uniform enclosed mass s^3 onto r^2 / R^2.
 struct EvrardParams {
     int side = 30;
     double ng0 = 100;
@@ -86,7 +86,8 @@ InitialConditions<T> make_evrard(const EvrardParams& ep, const CaseContext& ctx)
 
 inline const CaseInfo& evrard_case() {
     static const CaseInfo info = case_info<EvrardParams>(
-        "evrard", "Evrard collapse (SPEC 9.4), a cold self-gravitating gas sphere (G = 1)", true,
+        "evrard",
+        "Evrard collapse (docs/physics.md §9.4), a cold self-gravitating gas sphere (G = 1)", true,
         {{"gamma", &EvrardParams::gamma, "adiabatic index"},
          {"mass", &EvrardParams::mass, "mass of the sphere"},
          {"radius", &EvrardParams::radius, "radius of the sphere"},

@@ -26,7 +26,7 @@ struct InitialConditions {
 };
 
 // Sets the state of slot s: id, position, velocity, x_{-1} = x - v dt0 (the Press scheme's
-// previous position, SPEC 7), h, m and u; the other state fields start at zero.
+// previous position, physics.md §7), h, m and u; the other state fields start at zero.
 template <class T>
 void set_particle(ParticleSet<T>& ps, std::size_t s, std::uint64_t id, const double (&pos)[3],
                   const double (&vel)[3], double dt0, double h, double m, double u) {

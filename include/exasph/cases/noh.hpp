@@ -10,10 +10,10 @@
 
 namespace exasph {
 
-// Noh implosion (SPEC 9.3): a sphere of cold gas (rho = 1, gamma = 5/3) falling onto the centre
-// at speed 1, in open space. -n counts particles across the sphere's diameter. The default
-// radius is 1, not SPEC's 0.5: the exact solution at time t needs the gas that starts at radius
-// 4t/3 (0.8 at t = 0.6) to still be falling in.
+// Noh implosion (physics.md §9.3): a sphere of cold gas (rho = 1, gamma = 5/3) falling onto the
+// centre at speed 1, in open space. -n counts particles across the sphere's diameter. The default
+// radius is 1, not 0.5: the exact solution at time t needs the gas that starts at radius 4t/3 (0.8
+// at t = 0.6) to still be falling in.
 struct NohParams {
     int side = 40;
     double ng0 = 100;
@@ -65,7 +65,9 @@ InitialConditions<T> make_noh(const NohParams& np, const CaseContext& ctx) {
 
 inline const CaseInfo& noh_case() {
     static const CaseInfo info = case_info<NohParams>(
-        "noh", "Noh implosion (SPEC 9.3), a sphere falling onto its centre, exact solution", true,
+        "noh",
+        "Noh implosion (docs/physics.md §9.3), a sphere falling onto its centre, exact solution",
+        true,
         {{"gamma", &NohParams::gamma, "adiabatic index"},
          {"radius", &NohParams::radius, "radius of the sphere"},
          {"speed", &NohParams::speed, "infall speed"},

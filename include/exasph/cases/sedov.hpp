@@ -10,8 +10,8 @@
 
 namespace exasph {
 
-// Sedov-Taylor blast wave (SPEC 9.2): periodic box [-0.5, 0.5)^3, rho = 1, gamma = 5/3, cold gas
-// (u0) with total energy E deposited as internal energy in a Gaussian exp(-r^2 / width^2).
+// Sedov-Taylor blast wave (physics.md §9.2): periodic box [-0.5, 0.5)^3, rho = 1, gamma = 5/3, cold
+// gas (u0) with total energy E deposited as internal energy in a Gaussian exp(-r^2 / width^2).
 struct SedovParams {
     int side = 50;
     double ng0 = 100;
@@ -67,7 +67,8 @@ InitialConditions<T> make_sedov(const SedovParams& sp, const CaseContext& ctx) {
 
 inline const CaseInfo& sedov_case() {
     static const CaseInfo info = case_info<SedovParams>(
-        "sedov", "Sedov-Taylor blast wave (SPEC 9.2), periodic box, exact solution", true,
+        "sedov", "Sedov-Taylor blast wave (docs/physics.md §9.2), periodic box, exact solution",
+        true,
         {{"gamma", &SedovParams::gamma, "adiabatic index"},
          {"energy", &SedovParams::energy, "blast energy"},
          {"width", &SedovParams::width, "width of the Gaussian energy deposit"},

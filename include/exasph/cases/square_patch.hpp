@@ -8,7 +8,7 @@
 
 namespace exasph {
 
-// Rotating square patch (SPEC 9.1), CGS units.
+// Rotating square patch (physics.md §9.1), CGS units.
 struct SquarePatchParams {
     int side = 30;         // particles per axis
     double ng0 = 100;      // target neighbour count, sets h_0
@@ -89,7 +89,8 @@ inline const CaseInfo& square_patch_case() {
     static const CaseInfo info = with_scheme(
         Scheme::wc,
         case_info<SquarePatchParams>(
-            "square-patch", "Rotating square patch (SPEC 9.1), weakly compressible water, CGS",
+            "square-patch",
+            "Rotating square patch (docs/physics.md §9.1), weakly compressible water, CGS",
             false,
             {{"omega", &SquarePatchParams::omega, "angular velocity [rad/s]"},
              {"sound_speed", &SquarePatchParams::sound_speed, "Tait sound speed [cm/s]"},

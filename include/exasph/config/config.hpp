@@ -29,11 +29,11 @@ struct Config {
     // The formulation: a scheme names the values of the parameters from alpha to
     // volume_elements (config/scheme.hpp); Config{} is the std scheme.
     Scheme scheme = Scheme::std_sph;
-    double ng0 = 100;             // target neighbour count (SPEC 2)
+    double ng0 = 100;             // target neighbour count (physics.md §2)
     int ngmax = 150;              // neighbour cap: exceeding it is reported
-    double kernel_exponent = 6;   // sinc exponent n (SPEC 1)
-    double courant = 0.2;         // K_cour (SPEC 7)
-    double alpha = 1.0;           // artificial viscosity (SPEC 6); the maximum with --av-switch
+    double kernel_exponent = 6;   // sinc exponent n (physics.md §1)
+    double courant = 0.2;         // K_cour (physics.md §7)
+    double alpha = 1.0;           // artificial viscosity (physics.md §6); maximum with --av-switch
     bool av_switch = false;       // evolve alpha per particle (Morris & Monaghan)
     double alpha_min = 0.05;      // AV switch: floor of alpha
     double conductivity = 0.0;    // artificial conductivity alpha_u (0: off)
@@ -46,8 +46,8 @@ struct Config {
     bool torque_free = false;             // pair forces without net torque (angular momentum)
     bool double_precision = false;        // rho, P, c, P/(Om k^2), C, S, nc in double, not float
     double G = -1.0;        // gravitational constant (--G); < 0: the case's (0: no gravity)
-    double theta = 0.5;     // Barnes-Hut opening angle (SPEC 8)
-    double accel_eps = 0.2; // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (SPEC 7)
+    double theta = 0.5;     // Barnes-Hut opening angle (physics.md §8)
+    double accel_eps = 0.2; // gravity time-step factor: dt <= sqrt(accel_eps h / |a|) (§7)
     TimeStepping timesteps = TimeStepping::global; // one global dt, or power-of-two rungs
     bool no_timestep_limiter = false; // testing: block steps without the neighbour limiter
     bool no_halo_overlap = false; // benchmarks: each halo exchange waited for before the next pass

@@ -43,7 +43,7 @@ inline const std::array kParameters{
           "100)", "",
           OnRestart::kept, &Config::ng0, in_range(10, 1000)},
     Param{"--ngmax", "ngmax", "Neighbour cap; exceeding it is reported (lists are never "
-          "truncated) (set by --scheme: 300 wc and pe, else 150)", "", OnRestart::kept,
+          "truncated) (set by --scheme: 375 wc, 300 pe, else 150)", "", OnRestart::kept,
           &Config::ngmax,
           in_range(10, 4000)},
     Param{"--kernel-exponent", "kernel_exponent", "Sinc kernel exponent n", "", OnRestart::kept,
@@ -103,16 +103,16 @@ inline const std::array kParameters{
           "square patch's z-symmetry needs (on in the wc scheme)",
           "",
           OnRestart::kept, &Config::double_precision},
-    Param{"--G", "G", "Gravitational constant: self-gravity on the tree (SPEC 8) for any case in "
-          "an open box; 0 turns it off (default: the case's, 1 for evrard, else off)",
+    Param{"--G", "G", "Gravitational constant: self-gravity on the tree (docs/physics.md §8) for "
+          "any case in an open box; 0 turns it off (default: the case's, 1 for evrard, else off)",
           "code units", OnRestart::kept, &Config::G, in_range(0, 1e300), false},
     Param{"--theta", "theta", "Gravity: Barnes-Hut opening angle", "", OnRestart::kept,
           &Config::theta, in_range(0.05, 0.95)},
     Param{"--accel-eps", "accel_eps", "Gravity: time step at most sqrt(eps h / |a|) per particle",
           "", OnRestart::kept, &Config::accel_eps, in_range(1e-6, 10)},
     Param{"--timesteps", "timesteps", "Time stepping: global (every particle advances with the "
-          "smallest step, SPEC 7's Press and Adams-Bashforth scheme) or block (each particle on "
-          "its own power-of-two rung dt_max / 2^k, up to 2^24 rungs apart, kick-drift-kick "
+          "smallest step, the Press and Adams-Bashforth scheme of docs/physics.md §7) or block "
+          "(each particle on its own power-of-two rung dt_max / 2^k, up to 2^24 rungs apart, kick-drift-kick "
           "leapfrog; only active particles are searched and computed; a limiter keeps "
           "neighbours within 2 rungs and wakes inactive particles, Saitoh & Makino 2009)",
           "", OnRestart::kept, &Config::timesteps},

@@ -22,8 +22,8 @@
 
 namespace exasph {
 
-// Distributed domain (SPEC 11): the global top tree, the SFC-range assignment, migration, halo
-// discovery and halo exchange. After sync():
+// Distributed domain (physics.md §11): the global top tree, the SFC-range assignment, migration,
+// halo discovery and halo exchange. After sync():
 //   owned particles [0, n_owned) in SFC order (ties by id), halos [n_owned, n_owned + n_halo)
 //   grouped by source rank, local_tree() over the owned, halo_tree() over the halos.
 // It moves whatever fields it is asked to (by role), and never names a physics field.

@@ -3,7 +3,7 @@
 
 namespace exasph {
 
-// Noh implosion (SPEC 9.3), spherical: cold gas of density rho0 falling in at speed v0. The
+// Noh implosion (physics.md §9.3), spherical: cold gas of density rho0 falling in at speed v0. The
 // shock moves out at D = (gamma - 1) v0 / 2; behind it the gas is at rest with
 // rho = rho0 ((gamma + 1) / (gamma - 1))^3 and u = v0^2 / 2; ahead of it the converging flow
 // compresses the gas as rho = rho0 (1 + v0 t / r)^2.

@@ -5,11 +5,11 @@
 
 namespace exasph {
 
-// Sedov-Taylor point explosion in a uniform cold gas (SPEC 9.2), spherical, any gamma in (1, 7).
-// Landau & Lifshitz (Fluid Mechanics, section 106) reduce the self-similar equations to implicit
-// relations in the variable V (v = (2 r / 5 t) V): the radius xi = r / R_shock, the density
-// G = rho / rho_1 and Z = (25 t^2 / 4 r^2) c^2 are closed-form functions of V, which runs from
-// 2/(gamma+1) at the shock to 1/gamma at the centre. This class inverts xi(V) by bisection and
+// Sedov-Taylor point explosion in a uniform cold gas (physics.md §9.2), spherical, any gamma in (1,
+// 7). Landau & Lifshitz (Fluid Mechanics, section 106) reduce the self-similar equations to
+// implicit relations in the variable V (v = (2 r / 5 t) V): the radius xi = r / R_shock, the
+// density G = rho / rho_1 and Z = (25 t^2 / 4 r^2) c^2 are closed-form functions of V, which runs
+// from 2/(gamma+1) at the shock to 1/gamma at the centre. This class inverts xi(V) by bisection and
 // obtains xi_0 (R = xi_0 (E t^2 / rho_1)^(1/5)) from the energy integral by quadrature.
 class SedovSolution {
   public:

@@ -60,7 +60,7 @@ double density_scatter(const ParticleSet<T>& ps, std::size_t n, MPI_Comm comm) {
     return std::sqrt(std::max(s[1] / s[2] - mean * mean, 0.0)) / mean;
 }
 
-// A periodic glass (SPEC 9): side^3 random points in the unit box relaxed with SPH pressure
+// A periodic glass (physics.md §9): side^3 random points in the unit box relaxed with SPH pressure
 // forces of an isothermal gas, fully damped (every particle stopped after each step), until
 // the density scatter is below the tolerance. Each rank makes its share of the random points.
 inline GlassResult make_glass(const GlassParams& gp, MPI_Comm comm) {

@@ -21,8 +21,8 @@ struct GravityResult {
     std::uint32_t multipoles = 0, pairs = 0; // interactions evaluated
 };
 
-// Softened pair field (SPEC 8) at displacement d = x_a - x_b from a source of mass m, with the
-// pair's smoothing length h_ab = (h_a + h_b)/2.
+// Softened pair field (physics.md §8) at displacement d = x_a - x_b from a source of mass m, with
+// the pair's smoothing length h_ab = (h_a + h_b)/2.
 template <class T>
 EXASPH_HD EXASPH_INLINE GravityField pair_field(double dx, double dy, double dz, double m,
                                                 double hab, const SofteningView<T>& soft) {

@@ -31,9 +31,9 @@ struct GravityNode : LeafSummary<T> {
     std::uint32_t begin = 0, end = 0;
 };
 
-// Opening radius (SPEC 8, Barnes-Hut with the offset correction of Barnes 1994): a node of side
-// l (longest side of its tight box) whose centre of mass lies delta from the box centre is used
-// as a multipole only beyond l / theta + delta, so lopsided nodes are opened earlier.
+// Opening radius (physics.md §8, Barnes-Hut with the offset correction of Barnes 1994): a node of
+// side l (longest side of its tight box) whose centre of mass lies delta from the box centre is
+// used as a multipole only beyond l / theta + delta, so lopsided nodes are opened earlier.
 template <class T>
 void set_opening_radius(GravityNode<T>& nd, double theta) {
     double l = 0, delta2 = 0;

@@ -18,7 +18,7 @@
 
 namespace exasph {
 
-// Distributed self-gravity (SPEC 8) on the domain's decomposition:
+// Distributed self-gravity (physics.md §8) on the domain's decomposition:
 //  1. each rank summarises the global leaves it owns; one collective (sum/max) gives every rank
 //     every leaf's multipole, box and hmax, hence the same top tree;
 //  2. each rank decides from the top tree alone which remote leaves its walks may open, and each

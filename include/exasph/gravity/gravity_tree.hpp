@@ -47,9 +47,9 @@ inline int cell_level(std::uint64_t size) {
     return l;
 }
 
-// The gravity tree (SPEC 8): the global top tree over the global leaves (identical on every rank,
-// from the leaf summaries), and below each leaf whose particles are here a subtree of the same
-// octree cells the neighbour search uses. Built in two stages, because which remote leaves are
+// The gravity tree (physics.md §8): the global top tree over the global leaves (identical on every
+// rank, from the leaf summaries), and below each leaf whose particles are here a subtree of the
+// same octree cells the neighbour search uses. Built in two stages, because which remote leaves are
 // needed is decided on the top tree alone:
 //   build_top(leaf keys, summaries)  ->  top nodes, open_top_leaves() usable
 //   add_subtrees(sources, ranges)    ->  complete tree, view() usable

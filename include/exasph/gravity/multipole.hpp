@@ -6,8 +6,8 @@
 namespace exasph {
 
 // Monopole, traceless quadrupole and octupole of a group of particles about its centre of mass
-// (SPEC 8 asks for at least the quadrupole; the octupole makes the error fall as theta^4, which
-// the force-accuracy acceptance needs at theta = 0.5 where the forces nearly cancel):
+// (physics.md §8 asks for at least the quadrupole; the octupole makes the error fall as theta^4,
+// which the force-accuracy acceptance needs at theta = 0.5 where the forces nearly cancel):
 //   Q_ij  = sum_k m_k (3 d_i d_j - |d|^2 delta_ij),  d = x_k - com,
 //   S_ijk = sum_k m_k d_i d_j d_k (raw; the field formula below applies the trace terms),
 //   d2    = sum_k m_k |d|^2 (needed to shift the octupole to a parent's centre).

@@ -10,19 +10,18 @@ namespace exasph {
 // r^2/h^2 with multiply-adds, without the square root and the four table gathers (two per
 // linear interpolation, from tables that do not fit L1) of KernelView::value/derivative. Every
 // hydro pass evaluates W this way (density: w and the grad-h term, 10-12 % faster on Sedov; IAD,
-// the stress matrix and momentum-energy: w, IAD 19 % faster, docs/performance.md): the IAD
-// matrix and the gradients it corrects must use the same W (SPEC 5: exact for linear fields).
-// A sinc kernel with an integer exponent is an entire function of s: the degree-20 Chebyshev
-// interpolant is exact to rounding for n <= 8 (w and the grad-h term within 5e-13 of w(0), unit
-// test), 8e-11 for n = 10, 4e-9 for n = 12, against the table's interpolation error of ~1e-9
-// (dv^2/8 |w''|). A non-integer n has a (2 - v)^n end that no polynomial follows as closely:
-// 1.3e-7 of w(0) for n = 3.5.
-// In single precision (the pair loops with float derived fields) 16 terms suffice: evaluated in
-// float at float v^2, the degree-15 interpolant is within 1.0e-6 / 1.3e-6 / 1.6e-6 of w(0) for
-// n = 4 / 6 / 8, as the degree-20 one (float arithmetic sets that error: the rounding of t),
-// 4e-6 for n = 10 and 2.6e-5 for n = 12 (the grad-h term; 21 terms: 2e-6 and 2.5e-6), far below
-// the kernel's discretisation error. Five multiply-adds less per evaluation, in every pair loop
-// (Sedov std: density 6 %, IAD 8 %, momentum-energy 5 % faster on Zen 2).
+// the stress matrix and momentum-energy: w, IAD 19 % faster, docs/performance-log.md): the IAD
+// matrix and the gradients it corrects must use the same W (physics.md §5: exact for linear
+// fields). A sinc kernel with an integer exponent is an entire function of s: the degree-20
+// Chebyshev interpolant is exact to rounding for n <= 8 (w and the grad-h term within 5e-13 of
+// w(0), unit test), 8e-11 for n = 10, 4e-9 for n = 12, against the table's interpolation error of
+// ~1e-9 (dv^2/8 |w''|). A non-integer n has a (2 - v)^n end that no polynomial follows as closely:
+// 1.3e-7 of w(0) for n = 3.5. In single precision (the pair loops with float derived fields) 16
+// terms suffice: evaluated in float at float v^2, the degree-15 interpolant is within 1.0e-6 /
+// 1.3e-6 / 1.6e-6 of w(0) for n = 4 / 6 / 8, as the degree-20 one (float arithmetic sets that
+// error: the rounding of t), 4e-6 for n = 10 and 2.6e-5 for n = 12 (the grad-h term; 21 terms: 2e-6
+// and 2.5e-6), far below the kernel's discretisation error. Five multiply-adds less per evaluation,
+// in every pair loop (Sedov std: density 6 %, IAD 8 %, momentum-energy 5 % faster on Zen 2).
 template <class T>
 inline constexpr int kPolyTerms = sizeof(T) < sizeof(double) ? 16 : 21;
 

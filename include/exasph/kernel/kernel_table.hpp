@@ -11,7 +11,8 @@
 namespace exasph {
 
 // Read-only view of a tabulated kernel w(v), v = r/h in [0, 2], with W(r, h) = w(v) / h^3.
-// Linear interpolation between kSize equally spaced entries (SPEC 1: no sin/pow in inner loops).
+// Linear interpolation between kSize equally spaced entries (physics.md §1: no sin/pow in inner
+// loops).
 template <class T>
 struct KernelView {
     const T* w;  // w(v_i)
@@ -19,7 +20,7 @@ struct KernelView {
     T inv_dv;    // (kSize - 1) / 2
     int size;
     KernelPoly<T> w_sq;     // w as a polynomial in v^2
-    KernelPoly<T> gradh_sq; // 3 w + v dw/dv (the grad-h sum's term, SPEC 3) in v^2
+    KernelPoly<T> gradh_sq; // 3 w + v dw/dv (the grad-h sum's term, physics.md §3) in v^2
     // The same two in single precision: pair loops whose results are stored in float (the
     // derived fields' default storage) evaluate them in float, twice the lanes per instruction.
     KernelPoly<float> w_sq_f, gradh_sq_f;
@@ -72,8 +73,8 @@ struct KernelShape {
     double param; // e.g. the sinc exponent n
 };
 
-// Normalisation B with 4 pi B \int_0^2 f(v) v^2 dv = 1 (SPEC 1), by composite Simpson quadrature
-// on 2e5 intervals: the integrand is smooth, so the error is far below 1e-12.
+// Normalisation B with 4 pi B \int_0^2 f(v) v^2 dv = 1 (physics.md §1), by composite Simpson
+// quadrature on 2e5 intervals: the integrand is smooth, so the error is far below 1e-12.
 inline double kernel_normalisation(const KernelShape& k) {
     constexpr int kIntervals = 200000;
     const double dv = 2.0 / kIntervals;

@@ -5,7 +5,7 @@
 
 namespace exasph {
 
-// Sinc kernels (SPEC 1): f(v) = S_n(pi v / 2), S_n(x) = (sin x / x)^n, support v < 2.
+// Sinc kernels (physics.md §1): f(v) = S_n(pi v / 2), S_n(x) = (sin x / x)^n, support v < 2.
 namespace sinc_detail {
 inline double sinc(double x) {
     return x < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x;
@@ -33,7 +33,8 @@ inline KernelShape sinc_kernel(double n) {
     return {sinc_detail::shape, sinc_detail::shape_derivative, n};
 }
 
-// SPHYNX fit of the normalisation (SPEC 1), good to ~1e-5; kept to cross-check the quadrature.
+// SPHYNX fit of the normalisation (physics.md §1), good to ~1e-5; kept to cross-check the
+// quadrature.
 inline double sinc_normalisation_fit(double n) {
     return 2.7012593e-2 + 2.0410827e-2 * std::sqrt(n) + 3.7451957e-3 * n +
            4.7013839e-2 * n * std::sqrt(n);

@@ -8,8 +8,8 @@
 
 namespace exasph {
 
-// Gravity of a particle whose mass is spread like the SPH kernel (SPEC 8: softened inside 2h).
-// With q = r/h and M(q) = 4 pi \int_0^q w(s) s^2 ds the mass fraction inside q:
+// Gravity of a particle whose mass is spread like the SPH kernel (physics.md §8: softened inside
+// 2h). With q = r/h and M(q) = 4 pi \int_0^q w(s) s^2 ds the mass fraction inside q:
 //   acceleration  a = -G m F(q) r_vec / h^3,  F(q) = M(q) / q^3   (= 1/q^3 for q >= 2)
 //   potential     phi = -G m psi(q) / h,      psi(q) = M(q)/q + 4 pi \int_q^2 w(s) s ds  (= 1/q)
 // Both are tabulated on [0, 2] and interpolated linearly; outside they are the point-mass laws.

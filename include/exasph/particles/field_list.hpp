@@ -16,18 +16,18 @@ enum class Field : std::uint8_t {
     z, // position
     x_m1,
     y_m1,
-    z_m1, // position at the previous step (Press scheme, SPEC 7)
+    z_m1, // position at the previous step (Press scheme, physics.md §7)
     vx,
     vy,
     vz,    // velocity
     h,     // smoothing length
     m,     // mass
     u,     // specific internal energy
-    du_m1, // du/dt of the previous step (Adams-Bashforth, SPEC 7)
-    rho0,  // reference density of the Tait EOS (SPEC 4), measured at step 0
-    p0,    // background pressure of the Tait EOS (SPEC 4, 9.1)
-    rho,   // density (SPEC 3)
-    pgrad, // P / (Omega k^2): pressure-force coefficient with the grad-h term Omega (SPEC 3, 6)
+    du_m1, // du/dt of the previous step (Adams-Bashforth, physics.md §7)
+    rho0,  // reference density of the Tait EOS (physics.md §4), measured at step 0
+    p0,    // background pressure of the Tait EOS (physics.md §4, 9.1)
+    rho,   // density (physics.md §3)
+    pgrad, // P / (Omega k^2): pressure-force coefficient, grad-h term Omega (physics.md §3, 6)
     p,     // pressure
     c,     // sound speed
     c11,
@@ -35,7 +35,7 @@ enum class Field : std::uint8_t {
     c13,
     c22,
     c23,
-    c33, // IAD matrix C = tau^-1 (SPEC 5)
+    c33, // IAD matrix C = tau^-1 (physics.md §5)
     // The artificial stress's matrix M (row-major), only with the stress (--tensile-stress or
     // --tensile-stress-positive) and --torque-free (tensile_stress.hpp).
     s11,
@@ -51,12 +51,12 @@ enum class Field : std::uint8_t {
     ay,
     az,    // acceleration
     du,    // du/dt
-    nc,    // neighbour count within 2h (SPEC 2)
+    nc,    // neighbour count within 2h (physics.md §2)
     alpha, // artificial-viscosity coefficient (constant, or evolved by the AV switch)
     divv,  // velocity divergence (IAD), drives the AV switch
     xm,    // volume-element weight X (= m for standard SPH; (m/rho)^p with volume elements)
     kx,    // volume-element normalisation k = sum_b X_b W_ab
-    phi,   // gravitational potential (SPEC 8; 0 without gravity)
+    phi,   // gravitational potential (physics.md §8; 0 without gravity)
     gsoft, // the softening correction's xi (sph/softening_correction_kern.hpp; with gravity)
     stir,  // power per unit mass of the stirring force, v . a_stir (driven turbulence)
     // Strain rate S = (G + G^T) / 2 of the IAD velocity gradient G_ij = dv_i/dx_j, only with

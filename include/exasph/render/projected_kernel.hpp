@@ -9,9 +9,9 @@ namespace exasph {
 
 // The kernel integrated along a line of sight: a particle of smoothing length h adds
 // F(R/h) / h^2 per unit of its (volume x quantity) to the column through a point at projected
-// distance R, with F(q) = \int w(sqrt(q^2 + s^2)) ds over the support (W = w(v) / h^3, SPEC 1),
-// so that 2 pi \int_0^2 F(q) q dq = 1. Tabulated at kSize points of q in [0, 2] (Simpson rule on
-// the exact kernel), read by linear interpolation.
+// distance R, with F(q) = \int w(sqrt(q^2 + s^2)) ds over the support (W = w(v) / h^3, physics.md
+// §1), so that 2 pi \int_0^2 F(q) q dq = 1. Tabulated at kSize points of q in [0, 2] (Simpson rule
+// on the exact kernel), read by linear interpolation.
 class ProjectedKernel {
   public:
     static constexpr int kSize = 2000;

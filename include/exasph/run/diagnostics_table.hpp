@@ -9,7 +9,7 @@
 
 namespace exasph {
 
-// The columns of diagnostics.csv: the SPEC 10 quantities of a step, then the seconds of each
+// The columns of diagnostics.csv: the physics.md §10 quantities of a step, then the seconds of each
 // phase (t_NAME).
 // With block time steps (`rungs`) also active_rK: the active particles of rung K in the step.
 inline std::vector<CsvColumn> diagnostics_columns(bool rungs) {

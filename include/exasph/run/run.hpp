@@ -64,7 +64,7 @@ inline std::unique_ptr<CsvTable> open_diagnostics(const Config& cfg, bool root, 
 inline void write_run_file(const Config& cfg) {
     const std::string path = (std::filesystem::path(cfg.out_dir) / "run.toml").string();
     write_text_file_atomically(
-        path, run_file_text(cfg, std::string("exasph ") + kVersion + " (" + kBuildInfo + ")"));
+        path, run_file_text(cfg, version_text()));
 }
 
 namespace detail {

@@ -9,7 +9,7 @@
 #include <omp.h>
 #endif
 
-#include "exasph/build_info.hpp"
+#include "exasph/run/version.hpp"
 #include "exasph/config/summary.hpp"
 #include "exasph/io/comm_matrix.hpp"
 #include "exasph/sim/simulation.hpp"
@@ -40,7 +40,7 @@ template <class T, class L>
 void print_header(std::ostream& out, const Config& cfg, const Simulation<T, L>& sim, int nranks,
                   double t_end, const std::string& backend) {
     const bool restart = !cfg.restart_file.empty();
-    out << "exasph " << kVersion << " (" << kBuildInfo << ")\n";
+    out << version_text() << "\n";
     out << strprintf("%s %s, %llu particles, %d ranks x %d threads\n",
                      restart ? "restart of" : "case", cfg.init.c_str(),
                      (unsigned long long)sim.diagnostics().n, nranks, thread_count());

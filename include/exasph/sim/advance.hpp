@@ -11,7 +11,7 @@
 
 namespace exasph {
 
-// SPEC 7 and 2, the end of a step: the state, the AV switch, h and X move on (their inputs
+// physics.md §7 and 2, the end of a step: the state, the AV switch, h and X move on (their inputs
 // checked against the step's seals first, a change raising kStateChanged); with block time
 // steps (blocks) every particle drifts and the rest moves on for the active ones only. Returns
 // the time the step reaches.

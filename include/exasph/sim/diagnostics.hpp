@@ -40,7 +40,7 @@ struct StepWork {
     }
 };
 
-// Global conserved quantities, neighbour and decomposition statistics of one step (SPEC 10).
+// Global conserved quantities, neighbour and decomposition statistics of one step (physics.md §10).
 struct Diagnostics {
     std::int64_t step = 0;
     double time = 0, dt = 0;
@@ -91,9 +91,9 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
             *du = ps.data(Field::du);
     const T* gsoft = ps.enabled(Field::gsoft) ? ps.data(Field::gsoft) : nullptr;
     const T* kx = ps.enabled(Field::kx) ? ps.data(Field::kx) : nullptr;
-    // SPEC 8's softening follows h: E_pot moves by m_a zeta_a dh_a. The density pass left
-    // gsoft_a = zeta_a (-h_a / (3 k_a Omega_a)) and SPEC 2 made dh_a / h_a = g(nc_a) - 1 from
-    // this step's nc, so m_a |zeta_a dh_a| = 3 m_a k_a Omega_a |gsoft_a (g - 1)|, Omega_a ~ 1.
+    // physics.md §8's softening follows h: E_pot moves by m_a zeta_a dh_a. The density pass left
+    // gsoft_a = zeta_a (-h_a / (3 k_a Omega_a)) and physics.md §2 made dh_a / h_a = g(nc_a) - 1
+    // from this step's nc, so m_a |zeta_a dh_a| = 3 m_a k_a Omega_a |gsoft_a (g - 1)|, Omega_a ~ 1.
     auto softening_moved = [&](std::size_t i) {
         if (!gsoft) return 0.0;
         const double k = kx ? double(kx[i]) : rho(i);
@@ -114,7 +114,7 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
                 mi * (double(z[i]) * vx[i] - double(x[i]) * vz[i]),
                 mi * (double(x[i]) * vy[i] - double(y[i]) * vx[i]),
                 nc(i),
-                phi ? 0.5 * mi * phi[i] : 0.0, // each pair counted from both sides (SPEC 8)
+                phi ? 0.5 * mi * phi[i] : 0.0, // each pair counted from both sides (physics.md §8)
                 mi,
                 mi * (std::abs(va) + std::abs(double(du[i]))),
                 mi * (std::sqrt(v2) + cs(i)),

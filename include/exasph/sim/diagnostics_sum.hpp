@@ -9,7 +9,7 @@
 
 namespace exasph {
 
-// The diagnostics collective (SPEC 10): this rank's sums of its n owned particles, the
+// The diagnostics collective (physics.md §10): this rank's sums of its n owned particles, the
 // run-control flags, the step's work (StepWork) and the particles' extent, reduced at once; the
 // extent fits the open axes of `box` (next step's box without a collective of its own).
 // t_start: the time the step began (the exact solution's L1 error; after_step: false for the

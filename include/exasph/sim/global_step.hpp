@@ -9,7 +9,7 @@
 
 namespace exasph {
 
-// SPEC 7: this rank's smallest limit: the Courant limit (from the momentum-energy pass) and,
+// physics.md §7: this rank's smallest limit: the Courant limit (from the momentum-energy pass) and,
 // with gravity (accel_eps > 0), the acceleration limit.
 template <class L, class T>
 double local_time_step_limit(ParticleSet<T>& ps, std::size_t n, double courant, double accel_eps) {
@@ -44,7 +44,7 @@ struct StepClock {
     void stepped(double dt, double t_next) { time = t_next, dt_m1 = dt, ++step; }
 };
 
-// SPEC 7, one global step: the smallest limit over all ranks (one collective).
+// physics.md §7, one global step: the smallest limit over all ranks (one collective).
 template <class L, class T>
 double global_time_step(ParticleSet<T>& ps, std::size_t n, double courant, double accel_eps,
                         Collectives& coll, const StepClock& clock) {

@@ -22,7 +22,7 @@ constexpr bool splits_groups() {
         return false;
 }
 
-// The passes of SPEC 3-6 with what they need from the step, each timed as its phase.
+// The passes of physics.md §3-6 with what they need from the step, each timed as its phase.
 template <class T>
 struct HydroInputs {
     const Box<T>& box;
@@ -39,7 +39,7 @@ struct HydroInputs {
     }
     std::uint8_t iad_halos() const { return cfg.av_limiter ? kHaloIad | kHaloGrad : kHaloIad; }
 
-    // SPEC 3-4 and, with gravity, the softening's zeta, over the lists or a part of them.
+    // physics.md §3-4 and, with gravity, the softening's zeta, over the lists or a part of them.
     template <class L, class Part>
     void density(ParticleSet<T>& ps, const Part& nl) const {
         compute_density<L>(ps, nl, box, k, eos, first && eos.kind == EosKind::tait);
@@ -118,7 +118,7 @@ double hydro_passes_overlapped(ParticleSet<T>& ps, const NeighbourLists<T>& nl,
     return std::min(owned, momentum_energy(parts.reading_halos));
 }
 
-// SPEC 3-6, the SPH passes of a step with their halo exchanges, each timed as its phase:
+// physics.md §3-6, the SPH passes of a step with their halo exchanges, each timed as its phase:
 // density and EOS (Tait: rho0 from the first step; volume weights settled first), with gravity
 // the softening's zeta, IAD, momentum and energy (its kernel passed through `wrap`), with
 // gravity the softening's force. Returns the Courant limit of the pass (+infinity when `wrap`
@@ -141,7 +141,7 @@ double hydro_forces(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, cons
     } else {
         courant = hydro_passes_in_turn<L>(ps, nl, in, domain, timer, wrap);
     }
-    if (gravity) add_softening_correction<L>(ps, nl, k); // SPEC 8's softening
+    if (gravity) add_softening_correction<L>(ps, nl, k); // physics.md §8's softening
     return courant;
 }
 

@@ -25,7 +25,7 @@ void enable_run_fields(ParticleSet<T>& ps, const Config& cfg, const EosParams& e
     require_eos_inputs(ps, ps.size(), eos, cfg.energy_weights, coll);
 }
 
-// Self-gravity with constant G > 0 (SPEC 8) in an open box, with its fields.
+// Self-gravity with constant G > 0 (physics.md §8) in an open box, with its fields.
 template <class T>
 void start_gravity(std::optional<GravitySolver<T>>& gravity, ParticleSet<T>& ps, const Box<T>& box,
                    const KernelTable<T>& kernel, const Config& cfg, double G) {

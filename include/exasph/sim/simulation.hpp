@@ -216,7 +216,7 @@ class Simulation {
         work_.pairs = double(res.pairs);
     }
 
-    // SPEC 7 (sim/global_step.hpp), or the rungs of block time steps (sim/block_clock.hpp).
+    // physics.md §7 (sim/global_step.hpp), or the rungs of block time steps (sim/block_clock.hpp).
     double choose_time_step() {
         const double accel = gravity_ ? cfg_.accel_eps : 0.0;
         if (blocks_) { // closing and opening the steps updates the state: check it first
@@ -232,7 +232,7 @@ class Simulation {
         return sched_.voted_step<L>(ps_, n_owned(), limit, clock_, cfg_.ng0, domain_, flags_);
     }
 
-    // SPEC 7 and 2 (sim/advance.hpp).
+    // physics.md §7 and 2 (sim/advance.hpp).
     void advance(double dt) {
         const double t_next =
             advance_state<L>(ps_, n_owned(), box_, blocks_ ? &*blocks_ : nullptr, cfg_, dt,
@@ -256,7 +256,7 @@ class Simulation {
         timer_.end_step();
     }
 
-    // SPEC 10 sums, run-control flags and the particles' extent (next box): one collective.
+    // physics.md §10 sums, run-control flags and the particles' extent (next box): one collective.
     // A step without it (--diagnostics-every) notes only what every rank knows.
     void diagnose(double dt, bool summed = true) {
         const double waited = domain_.comm_record().waited_in_step(); // compute: the rest

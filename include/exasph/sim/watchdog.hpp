@@ -31,7 +31,7 @@ inline double energy_budget(const Diagnostics& prev, const Diagnostics& now) {
     // the change between two rows carries the error of the previous step's prediction too:
     // the budget takes the longer of the two steps (a step shortened to end at t_end can be
     // 1000 times shorter than the one before it, with the error of that one).
-    // With gravity, E_pot also moves with the softening when h changes (SPEC 2 relaxes h
+    // With gravity, E_pot also moves with the softening when h changes (physics.md §2 relaxes h
     // towards ng0 neighbours, which the softening correction's force does not pay for): the
     // previous step's h change moved it by about sum m |zeta dh| (Diagnostics::soft_abs; Evrard
     // -n 10, step 2: 1.35e-3 estimated, 1.27e-3 seen); and the tree's approximation changes as

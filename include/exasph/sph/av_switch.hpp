@@ -5,7 +5,8 @@
 
 namespace exasph {
 
-// Time-dependent artificial viscosity (Morris & Monaghan 1997, the "later switch" of SPEC 6):
+// Time-dependent artificial viscosity (Morris & Monaghan 1997, the "later switch" of physics.md
+// §6):
 //   d alpha/dt = -(alpha - alpha_min) / tau + max(-div v, 0) (alpha_max - alpha),
 //   tau = h / (decay c).
 // Compression raises alpha towards alpha_max within a few steps; elsewhere it decays to

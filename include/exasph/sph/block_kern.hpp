@@ -18,7 +18,7 @@
 // (CloseStepKernel).
 namespace exasph {
 
-// The particle's own step limit (Field::dtc holds this step's Courant limit, SPEC 7): with
+// The particle's own step limit (Field::dtc holds this step's Courant limit, physics.md §7): with
 // gravity also sqrt(eps h / |a|); the energy criterion (energy_time_step, k_u = 0.3); at most
 // `growth` times its last step, and at the start of the run at most the case's first step. Inside a
 // block growth is 2 (the rung falls by one at most); at a block's start 4, since the new block's

@@ -17,7 +17,7 @@ struct DensityResult {
     T rho;
     T kx; // k_a = sum_b X_b W_ab(h_a): the volume-element normalisation (= rho when X = m)
     T omega;
-    std::uint32_t nc; // neighbours with r < 2 h_a, self excluded (SPEC 2)
+    std::uint32_t nc; // neighbours with r < 2 h_a, self excluded (physics.md §2)
 };
 
 // The pair sums of density_kern: k starts from k0 and the grad-h sum from dh0 (a's own terms).
@@ -30,9 +30,9 @@ struct DensityPairSums {
 // Pairs beyond 2 h_a (listed because of h_b) are masked rather than skipped, so that the loop
 // vectorises. simdlen(8): left to itself GCC 12 picks 16 doubles per step for this loop (two
 // zmm registers per value, spilled, AVX-512 gathers); with 8 it reads the neighbours with scalar
-// loads into ymm pairs, 8-16 % faster on Zen 4 (docs/performance.md).
+// loads into ymm pairs, 8-16 % faster on Zen 4 (docs/performance-log.md).
 // The kernel's polynomials run in N, the precision rho, P/(Omega k^2) and nc are stored in (float
-// by default: the pass 22 % faster on Sedov, docs/performance.md; each term errs by up to 3e-7
+// by default: the pass 22 % faster on Sedov, docs/performance-log.md; each term errs by up to 3e-7
 // of w(0), 1.4e-6 in the grad-h term, from float's rounding of v^2, test_kernel); the distances
 // and the sums stay in T, so the results do not depend on the order of the neighbours beyond
 // T's round-off (ranks and threads agree).
@@ -81,11 +81,11 @@ EXASPH_HD DensityPairSums<T> density_pairs(std::uint32_t a, Span nb, const Parti
     return density_pairs_portable(a, nb, p, box, k, k0, dh0);
 }
 
-// SPEC 3 with generalised volume elements (Hopkins 2013; Cabezon et al. 2017): every particle
-// carries a weight X (X = m gives standard SPH exactly), k_a = sum_b X_b W_ab(h_a) including
-// b = a, V_a = X_a / k_a, rho_a = m_a / V_a, and the grad-h term
-// Omega_a = 1 - 1/(3 k_a h_a^3) sum_b X_b (3 w(v) + v w'(v)). Both terms come from the kernel's
-// polynomials in v^2 (KernelPoly): no square root and no table gathers per pair.
+// physics.md §3 with generalised volume elements (Hopkins 2013; Cabezon et al. 2017): every
+// particle carries a weight X (X = m gives standard SPH exactly), k_a = sum_b X_b W_ab(h_a)
+// including b = a, V_a = X_a / k_a, rho_a = m_a / V_a, and the grad-h term Omega_a = 1 - 1/(3 k_a
+// h_a^3) sum_b X_b (3 w(v) + v w'(v)). Both terms come from the kernel's polynomials in v^2
+// (KernelPoly): no square root and no table gathers per pair.
 template <class T, class N, class Span>
 EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
                                         const Box<T>& box, const KernelView<T>& k) {
@@ -101,11 +101,11 @@ EXASPH_HD DensityResult<T> density_kern(std::uint32_t a, Span nb, const Particle
     return {rho, kx, omega, std::uint32_t(s.nc)};
 }
 
-// The density pass of one particle (SPEC 3 and 4): rho, nc (and k with volume elements), then P
-// and c from the equation of state, and the pressure-force coefficient P / (Omega k^2) of SPEC 6
-// that momentum-energy reads for both members of a pair (Omega itself is not stored: one float
-// array and one division per pair less). With `capture_rho0` (Tait, first step) the density
-// becomes the reference density rho0 first.
+// The density pass of one particle (physics.md §3 and 4): rho, nc (and k with volume elements),
+// then P and c from the equation of state, and the pressure-force coefficient P / (Omega k^2) of
+// physics.md §6 that momentum-energy reads for both members of a pair (Omega itself is not stored:
+// one float array and one division per pair less). With `capture_rho0` (Tait, first step) the
+// density becomes the reference density rho0 first.
 template <class T, class N = float>
 struct DensityEosKernel {
     ParticleView<T, N> p;

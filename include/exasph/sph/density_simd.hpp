@@ -4,7 +4,7 @@
 // for lane, a step of 8 (AVX2) or 16 (AVX-512) pairs. GCC's vectorisation of that loop (simdlen
 // 8 of doubles) kept two ymm registers per value and spilled a quarter of its instructions, and
 // left up to seven pairs per particle to a scalar remainder; here the remainder is one masked
-// step (docs/performance.md).
+// step (docs/performance-log.md).
 #include "exasph/sph/simd_isa.hpp"
 
 #ifdef EXASPH_SIMD_PAIRS

@@ -7,7 +7,7 @@ namespace exasph {
 
 enum class EosKind { ideal_gas, tait };
 
-// Equation-of-state parameters (SPEC 4). Which EOS is configuration, not a class hierarchy.
+// Equation-of-state parameters (physics.md §4). Which EOS is configuration, not a class hierarchy.
 struct EosParams {
     EosKind kind = EosKind::ideal_gas;
     double gamma = 5.0 / 3.0; // ideal gas

@@ -20,7 +20,7 @@ struct VelocityGradient {
 };
 
 // G_a = D_a C_a with D_a = sum_b V_b (v_b - v_a) (x) (x_b - x_a) W_ab(h_a): the IAD gradient
-// (SPEC 5) of each velocity component, exact for a linear velocity field.
+// (physics.md §5) of each velocity component, exact for a linear velocity field.
 template <class T>
 EXASPH_HD VelocityGradient<T> velocity_gradient(const T (&d)[9], const IadResult<T>& c) {
     const T cm[9] = {c.c11, c.c12, c.c13, c.c12, c.c22, c.c23, c.c13, c.c23, c.c33};
@@ -45,8 +45,8 @@ EXASPH_HD StrainRate<T> strain_rate(const VelocityGradient<T>& v) {
         {g[0], T(0.5) * (g[1] + g[3]), T(0.5) * (g[2] + g[6]), g[4], T(0.5) * (g[5] + g[7]), g[8]}};
 }
 
-// The sums of SPEC 5's IAD pass (IadSums) over a's neighbours, with V_b = X_b / k_b, or X_b / k_a
-// with kOwnK; kGrad: D_a as well.
+// The sums of physics.md §5's IAD pass (IadSums) over a's neighbours, with V_b = X_b / k_b, or X_b
+// / k_a with kOwnK; kGrad: D_a as well.
 template <bool kGrad, bool kOwnK, class T, class K, class N, class Span>
 EXASPH_HD IadSums<T> iad_sums_portable(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
                                        const Box<T>& box, const KernelView<T>& k, const K* kx) {
@@ -61,10 +61,10 @@ EXASPH_HD IadSums<T> iad_sums_portable(std::uint32_t a, Span nb, const ParticleV
     T dxx = 0, dxy = 0, dxz = 0, dyx = 0, dyy = 0, dyz = 0, dzx = 0, dzy = 0, dzz = 0;
     // Pairs beyond 2 h_a have W = 0 (KernelPoly is 0 there): no test needed. One kernel
     // evaluation per pair serves both sums: w at v^2 in N as momentum-energy evaluates it
-    // (KernelView::w_at: the same W in C_a and in the gradients it corrects, SPEC 5). Vectorised:
-    // with the contiguous span and the options as template parameters (no select of indices)
-    // the loop runs 10-20 % faster than the scalar one it replaced, and simdlen(8) (as in the
-    // density pass: 8 doubles per step in ymm pairs) another 10-18 % (docs/performance.md).
+    // (KernelView::w_at: the same W in C_a and in the gradients it corrects, physics.md §5).
+    // Vectorised: with the contiguous span and the options as template parameters (no select of
+    // indices) the loop runs 10-20 % faster than the scalar one it replaced, and simdlen(8) (as in
+    // the density pass: 8 doubles per step in ymm pairs) another 10-18 % (docs/performance-log.md).
     const PeriodicImage<T> image(box);
 #pragma omp simd simdlen(8) \
     reduction(+ : t11, t12, t13, t22, t23, t33, dxx, dxy, dxz, dyx, dyy, dyz, dzx, dzy, dzz)
@@ -99,7 +99,7 @@ EXASPH_HD IadSums<T> iad_sums(std::uint32_t a, Span nb, const ParticleView<T, N>
     return iad_sums_portable<kGrad, kOwnK>(a, nb, p, box, k, kx);
 }
 
-// SPEC 5, with the volume V_b = X_b / k_b (= m_b / rho_b for standard SPH):
+// physics.md §5, with the volume V_b = X_b / k_b (= m_b / rho_b for standard SPH):
 // tau_a = sum_b V_b (x_b - x_a) (x) (x_b - x_a) W_ab(h_a), C_a = tau_a^{-1}.
 // With a non-null `grad`, the same pass also yields the velocity gradient (velocity_gradient).
 // `kx`: k_b, the volume-element field, or rho_b (stored in N, is_narrow) for standard SPH.

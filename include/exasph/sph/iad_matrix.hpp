@@ -6,7 +6,7 @@
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/util/annotate.hpp"
 
-// The IAD matrix (SPEC 5): its inversion and its product with a pair's separation.
+// The IAD matrix (physics.md §5): its inversion and its product with a pair's separation.
 namespace exasph {
 
 // The six independent components of the symmetric IAD matrix C_a = tau_a^{-1}.
@@ -16,7 +16,7 @@ struct IadResult {
     bool singular;
 };
 
-// The sums of SPEC 5's IAD pass over a's neighbours: tau_a's six moments
+// The sums of physics.md §5's IAD pass over a's neighbours: tau_a's six moments
 // sum_b V_b d (x) d w(r / h_a) and, with the velocity gradient, D_a's nine
 // sum_b V_b (v_b - v_a) (x) d w (both still to be divided by h_a^3), d = x_b - x_a.
 template <class T>
@@ -45,8 +45,8 @@ EXASPH_HD IadResult<T> invert_symmetric3(T t11, T t12, T t13, T t22, T t23, T t3
             singular};
 }
 
-// Adds w d (x) d to the six sums of a symmetric second moment (tau, SPEC 5). Inlined into the
-// vectorised pair loops, whose omp simd reductions are on the six scalars.
+// Adds w d (x) d to the six sums of a symmetric second moment (tau, physics.md §5). Inlined into
+// the vectorised pair loops, whose omp simd reductions are on the six scalars.
 template <class T>
 EXASPH_HD EXASPH_INLINE void add_second_moment(T& t11, T& t12, T& t13, T& t22, T& t23, T& t33, T dx,
                                                T dy, T dz, T w) {

@@ -24,10 +24,10 @@ struct MomentumEnergyResult {
     T divv; // sum_b V_b (v_b - v_a) . A_ab(h_a)
 };
 
-// SPEC 6 with IAD gradients, with a per-particle alpha (SPEC 6's "later switch") (SPEC 5), over a
-// symmetric neighbour list (r_ab < 2 max(h_a, h_b)), which makes every pair's contribution appear
-// with opposite sign in b's sum: momentum is conserved to round-off and energy up to
-// time-integration error.
+// physics.md §6 with IAD gradients, with a per-particle alpha (physics.md §6's "later switch")
+// (physics.md §5), over a symmetric neighbour list (r_ab < 2 max(h_a, h_b)), which makes every
+// pair's contribution appear with opposite sign in b's sum: momentum is conserved to round-off and
+// energy up to time-integration error.
 //   A_ab(h_a) = C_a (x_b - x_a) W_ab(h_a),  A_ab(h_b) = C_b (x_b - x_a) W_ab(h_b)
 //   dv_a/dt = -sum_b m_b [P_a/(Om_a rho_a^2) A_ab(h_a) + P_b/(Om_b rho_b^2) A_ab(h_b)]
 //             (with volume elements: -sum_b (X_a X_b / m_a) [P_a/(Om_a k_a^2) A_ab(h_a) + ...])
@@ -90,7 +90,7 @@ momentum_energy_portable(std::uint32_t a, Span nb, const ParticleView<T, N>& p, 
     const PeriodicImage<T> image(box);
     // simdlen(8): on AVX2 GCC 12 emulates the gathers, and only with as many lanes as a vector
     // of the 32-bit indices (8) does it accept the float fields' ones; with its own choice (4
-    // doubles) the loop stayed scalar there (2x slower on Zen 2, docs/performance.md).
+    // doubles) the loop stayed scalar there (2x slower on Zen 2, docs/performance-log.md).
 #pragma omp simd simdlen(8) reduction(+ : ax, ay, az, du_p, du_av, divv, du_cond, du_ts) \
     reduction(max : vsig_max)
     for (std::uint32_t n = 0; n < nb.count; ++n) {
@@ -105,7 +105,7 @@ momentum_energy_portable(std::uint32_t a, Span nb, const ParticleView<T, N>& p, 
         T inv_r = r > T(0) ? T(1) / r : T(0);
         T hb = h[b], inv_hb = T(1) / hb;
         T va = r * inv_ha, vb = r * inv_hb;
-        // w in N (float by default: 9-11 % faster on Sedov, docs/performance.md), 1/h squared
+        // w in N (float by default: 9-11 % faster on Sedov, docs/performance-log.md), 1/h squared
         // before it multiplies r^2 for both members, so a and b compute the same w_ab(h) to the bit
         T kwa = k.template w_at<N>(r2, inv_ha2), kwb = k.template w_at<N>(r2, inv_hb * inv_hb);
         T wa = kwa * inv_ha3;
@@ -218,7 +218,7 @@ momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, cons
 }
 
 // The momentum-energy pass of one particle: a, du/dt (and div v for the AV switch) stored;
-// returns the particle's Courant time step (SPEC 7) for the factor `courant`, so that signal
+// returns the particle's Courant time step (physics.md §7) for the factor `courant`, so that signal
 // velocities are used where they are computed, not stored.
 template <class T, PairTerms kTerms, bool kAlphaField, bool kVolumeElements, class N = float>
 struct MomentumEnergyKernel {

@@ -8,7 +8,7 @@
 // remainder as one masked step, the image only where the group may need it. GCC's version of
 // the plain loop took ~100 instructions per pair, a third of them spills and the one-by-one
 // loads of its emulated gathers; the limited one (simdlen 8) was 46 % of the ve step
-// (docs/performance.md).
+// (docs/performance-log.md).
 #include "exasph/sph/simd_isa.hpp"
 
 #ifdef EXASPH_SIMD_PAIRS
@@ -140,7 +140,7 @@ class MomentumEnergyPairs {
         out[2] = fma(m[5], d[2], fma(m[4], d[1], m[2] * d[0]));
     }
 
-    // SPEC 6's terms of one half's pairs (momentum_energy_portable's plain or limited form).
+    // physics.md §6's terms of one half's pairs (momentum_energy_portable's plain or limited form).
     EXASPH_INLINE void pair_terms(const std::uint32_t* i, const Geometry& g, D kwa, D kwb, M ok,
                                   Lanes& acc) const {
         const D zero = V::splat(0.0);

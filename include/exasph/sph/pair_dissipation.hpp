@@ -7,8 +7,9 @@
 #include "exasph/util/annotate.hpp"
 #include "exasph/util/branch_free_exp.hpp"
 
-// What the momentum-energy pair loop adds to SPEC 6's pressure and viscosity terms: the options
-// (Dissipation), the slope-limited viscosity's reconstruction, and the central projection of
+// What the momentum-energy pair loop adds to physics.md §6's pressure and viscosity terms: the
+// options (Dissipation), the slope-limited viscosity's reconstruction, and the central projection
+// of
 // --torque-free.
 namespace exasph {
 
@@ -18,7 +19,7 @@ namespace exasph {
 // `any` every option (the artificial stress, --torque-free, conductivity without the limiter).
 enum class PairTerms { plain, limited, any };
 
-// Artificial dissipation beyond SPEC 6's viscosity.
+// Artificial dissipation beyond physics.md §6's viscosity.
 template <class T>
 struct Dissipation {
     T alpha_u = T(0);          // artificial conductivity coefficient (0: off)

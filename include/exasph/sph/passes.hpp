@@ -45,7 +45,7 @@ struct AsIs {
     }
 };
 
-// SPEC 3 and 4: density, EOS and the pressure-force coefficient (DensityEosKernel).
+// physics.md §3 and 4: density, EOS and the pressure-force coefficient (DensityEosKernel).
 template <class L = DefaultLauncher, class T, class Lists>
 void compute_density(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const KernelView<T>& k,
                      const EosParams& eos = {}, bool capture_rho0 = false) {
@@ -55,7 +55,7 @@ void compute_density(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, con
     });
 }
 
-// SPEC 5. Throws Error naming a particle whose tau is singular. With `with_gradient`, also
+// physics.md §5. Throws Error naming a particle whose tau is singular. With `with_gradient`, also
 // stores the velocity gradient for the reconstructed artificial viscosity; with `diss`'s
 // stress_matrix, the artificial stress's matrix M (Field::s11..s33).
 template <class L = DefaultLauncher, class T, class Lists>
@@ -84,9 +84,9 @@ void compute_iad(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const K
     }
 }
 
-// SPEC 6; returns the Courant time step of SPEC 7 (min over the particles). One instantiation of
-// the pair loop per combination of options, chosen once per pass.
-// `wrap` may wrap the kernel (block time steps: StoreResultKernel keeps each particle's limit).
+// physics.md §6; returns the Courant time step of physics.md §7 (min over the particles). One
+// instantiation of the pair loop per combination of options, chosen once per pass. `wrap` may wrap
+// the kernel (block time steps: StoreResultKernel keeps each particle's limit).
 template <class L = DefaultLauncher, class T, class Lists, class Wrap = AsIs>
 double compute_momentum_energy(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box,
                                const KernelView<T>& k, const Dissipation<T>& diss = {},
@@ -138,7 +138,7 @@ void add_softening_correction(ParticleSet<T>& ps, const Lists& nl, const KernelV
     });
 }
 
-// SPEC 7: positions, velocities and u of the first n particles, one axis at a time
+// physics.md §7: positions, velocities and u of the first n particles, one axis at a time
 // (PressAxisKernel), then u (EnergyUpdateKernel).
 template <class L = DefaultLauncher, class T>
 void update_state(ParticleSet<T>& ps, std::size_t n, const Box<T>& box, double dt, double dt_m1) {
@@ -150,7 +150,7 @@ void update_state(ParticleSet<T>& ps, std::size_t n, const Box<T>& box, double d
     });
 }
 
-// SPEC 2 (SmoothingLengthKernel).
+// physics.md §2 (SmoothingLengthKernel).
 template <class L = DefaultLauncher, class T>
 void update_smoothing_lengths(ParticleSet<T>& ps, const ParticleRange& r, double ng0) {
     with_view(ps, [&](auto p) {

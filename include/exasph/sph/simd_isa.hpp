@@ -25,7 +25,7 @@ struct Avx2 {
     static D splat(double x) { return {_mm256_set1_pd(x)}; }
     static F splat_f(float x) { return {_mm256_set1_ps(x)}; }
     // f[i[0..3]]: two scalar loads per 128-bit half. Zen 2 runs these faster than vgatherdpd,
-    // and Zen 5 faster than its 8-wide form (docs/performance.md).
+    // and Zen 5 faster than its 8-wide form (docs/performance-log.md).
     static EXASPH_INLINE D gather(const double* f, const std::uint32_t* i) {
         const __m128d lo = _mm_loadh_pd(_mm_load_sd(f + i[0]), f + i[1]);
         const __m128d hi = _mm_loadh_pd(_mm_load_sd(f + i[2]), f + i[3]);

@@ -12,9 +12,9 @@ namespace exasph {
 // skin s stay sufficient while every particle's displacement plus the growth of its h stays
 // below s / 2 (a pair's distance then shrank by at most s minus the growth of 2 max(h_i, h_j)).
 // The coming step is bounded by dt (at least the step the collective will choose):
-//   SPEC 7: x_{n+1} - x_n = dt (x_n - x_{n-1}) / dt_{n-1} + a_n dt (dt + dt_{n-1}) / 2,
-// whose length is at most the sum of its terms' lengths, and SPEC 2's h_{n+1} from this step's
-// neighbour count. Returns minus the use (launchers reduce with a minimum).
+//   physics.md §7: x_{n+1} - x_n = dt (x_n - x_{n-1}) / dt_{n-1} + a_n dt (dt + dt_{n-1}) / 2,
+// whose length is at most the sum of its terms' lengths, and physics.md §2's h_{n+1} from this
+// step's neighbour count. Returns minus the use (launchers reduce with a minimum).
 template <class T, class N = float>
 struct SkinUseKernel {
     ParticleView<T, N> p;

@@ -5,7 +5,7 @@
 
 namespace exasph {
 
-// SPEC 2: h_new = h * 0.5 * (1 + c0 ng0 / nc)^(1/3), c0 = 7, a fixed point at nc = ng0.
+// physics.md §2: h_new = h * 0.5 * (1 + c0 ng0 / nc)^(1/3), c0 = 7, a fixed point at nc = ng0.
 // A particle with no neighbour counts as one so that h grows by a bounded factor.
 template <class T>
 EXASPH_HD T update_smoothing_length(T h, T nc, T ng0) {

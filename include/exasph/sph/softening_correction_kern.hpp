@@ -7,13 +7,13 @@
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 
-// The softening follows h (SPEC 8: each pair softened with h_ab = (h_a + h_b)/2), so
+// The softening follows h (physics.md §8: each pair softened with h_ab = (h_a + h_b)/2), so
 // E_pot = 1/2 sum_ab G m_a m_b phi(r_ab, h_ab) also changes when h does, and without a force
 // doing the matching work that change is lost from E_tot (Evrard -n 16: -2.6 % of E_pot at the
 // bounce, where h shrinks fastest). The correction of Price & Monaghan (2007), for pair
 // softening: dE_pot/dh_a = m_a zeta_a with
 //   zeta_a = G/2 sum_b m_b dphi/dh(r_ab, h_ab),   dphi/dh = (psi(q) - q^2 F(q)) / h^2, q = r/h
-// (psi, F of softening.hpp; 0 beyond q = 2). With h_a following k_a (h ~ k^-1/3, SPEC 2-3),
+// (psi, F of softening.hpp; 0 beyond q = 2). With h_a following k_a (h ~ k^-1/3, physics.md §2-3),
 // dh_a/dt = -h_a / (3 k_a Omega_a) sum_b X_b v_ab . grad_a W_ab(h_a), so with
 // xi_a = -zeta_a h_a / (3 k_a Omega_a) the pair force
 //   a_a -= sum_b [X_b xi_a grad_a W_ab(h_a) + (m_b X_a / m_a) xi_b grad_a W_ab(h_b)]

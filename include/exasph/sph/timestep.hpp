@@ -5,8 +5,8 @@
 
 namespace exasph {
 
-// SPEC 7: per-particle Courant limit K h_a / max_b v^sig_ab, falling back to h_a / c_a (and to
-// "no limit" when both speeds vanish).
+// physics.md §7: per-particle Courant limit K h_a / max_b v^sig_ab, falling back to h_a / c_a (and
+// to "no limit" when both speeds vanish).
 template <class T>
 EXASPH_HD T courant_time_step(T h, T vsig_max, T c, T courant) {
     if (vsig_max > T(0)) return courant * h / vsig_max;
@@ -14,7 +14,7 @@ EXASPH_HD T courant_time_step(T h, T vsig_max, T c, T courant) {
     return T(1e300);
 }
 
-// SPEC 7 with gravity: sqrt(eps h_a / |a_a|) ("no limit" without acceleration).
+// physics.md §7 with gravity: sqrt(eps h_a / |a_a|) ("no limit" without acceleration).
 template <class T>
 EXASPH_HD T acceleration_time_step(T h, T ax, T ay, T az, T eps) {
     const T a = std::sqrt(ax * ax + ay * ay + az * az);

@@ -9,15 +9,16 @@
 #include "exasph/sph/timestep.hpp"
 #include "exasph/util/box.hpp"
 
-// Per-particle kernels of the step that need no neighbours: the update of the state (SPEC 7),
-// of h (SPEC 2), of the AV switch's alpha (SPEC 6) and of the volume-element weights, and the
-// acceleration time-step limit. Each is a functor called as k(i) by a launcher (sph/launch.hpp).
+// Per-particle kernels of the step that need no neighbours: the update of the state (physics.md
+// §7), of h (physics.md §2), of the AV switch's alpha (physics.md §6) and of the volume-element
+// weights, and the acceleration time-step limit. Each is a functor called as k(i) by a launcher
+// (sph/launch.hpp).
 namespace exasph {
 
-// SPEC 7: Press scheme for x and v along one axis, with the periodic wrap of x and x_{n-1}. The
-// update runs one axis at a time, and the energy apart (EnergyUpdateKernel): four arrays per loop
-// instead of eleven, which the hardware prefetchers follow (all in one loop, the update phase of
-// Sedov 125k took 11.5 ms per step on 2 Zen 2 cores, mostly waiting for memory; split, 4.3 ms).
+// physics.md §7: Press scheme for x and v along one axis, with the periodic wrap of x and x_{n-1}.
+// The update runs one axis at a time, and the energy apart (EnergyUpdateKernel): four arrays per
+// loop instead of eleven, which the hardware prefetchers follow (all in one loop, the update phase
+// of Sedov 125k took 11.5 ms per step on 2 Zen 2 cores, mostly waiting for memory; split, 4.3 ms).
 template <class T, class N = float>
 struct PressAxisKernel {
     ParticleView<T, N> p;
@@ -39,7 +40,7 @@ struct PressAxisKernel {
     }
 };
 
-// SPEC 7: Adams-Bashforth for u; du becomes du_{n-1}.
+// physics.md §7: Adams-Bashforth for u; du becomes du_{n-1}.
 template <class T, class N = float>
 struct EnergyUpdateKernel {
     ParticleView<T, N> p;
@@ -52,7 +53,7 @@ struct EnergyUpdateKernel {
     }
 };
 
-// SPEC 2: h from this step's neighbour count.
+// physics.md §2: h from this step's neighbour count.
 template <class T, class N = float>
 struct SmoothingLengthKernel {
     ParticleView<T, N> p;
@@ -103,7 +104,7 @@ struct VolumeWeightKernel {
     }
 };
 
-// SPEC 7 with gravity: the acceleration limit sqrt(eps h / |a|) of particle i.
+// physics.md §7 with gravity: the acceleration limit sqrt(eps h / |a|) of particle i.
 template <class T, class N = float>
 struct AccelerationStepKernel {
     ParticleView<T, N> p;

@@ -36,8 +36,8 @@ namespace exasph {
 template <class T>
 class NeighbourLists {
   public:
-    // `ngmax` is the neighbour count above which Result::exceeded reports (SPEC 2); lists are
-    // never truncated.
+    // `ngmax` is the neighbour count above which Result::exceeded reports (physics.md §2); lists
+    // are never truncated.
     explicit NeighbourLists(std::uint32_t ngmax = 150) : ngmax_(ngmax) {}
 
     struct Result {

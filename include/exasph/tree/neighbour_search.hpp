@@ -13,7 +13,7 @@
 
 namespace exasph {
 
-// Which pairs are neighbours (SPEC 2).
+// Which pairs are neighbours (physics.md §2).
 //  gather:    r_ab < 2 h_a                (enough for density and IAD)
 //  symmetric: r_ab < 2 max(h_a, h_b)      (needed for exact conservation in momentum-energy)
 enum class NeighbourCriterion { gather, symmetric };

@@ -18,7 +18,7 @@ const KernelTable<double>& kernel() {
     return k;
 }
 
-// side^3 particles at cell centres of [0, 1)^3 with h for 100 neighbours (SPEC 2), volume
+// side^3 particles at cell centres of [0, 1)^3 with h for 100 neighbours (physics.md §2), volume
 // m / rho = dx^3 and the field a(x) (with a = rho, vol a is the mass).
 template <class A>
 RenderParticles lattice(int side, bool periodic, A a) {

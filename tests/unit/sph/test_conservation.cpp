@@ -189,8 +189,8 @@ TEST(Conservation, TorqueFreeStressConservesAngularMomentum) {
     EXPECT_GT(std::abs(own.force_sum - shared.force_sum), 1e-6 * own.force_sum);
 }
 
-// Why the symmetric criterion (SPEC 2): with r < 2 h_a only, pairs seen from one side break the
-// antisymmetry, and the sums are off by far more than round-off.
+// Why the symmetric criterion (physics.md §2): with r < 2 h_a only, pairs seen from one side break
+// the antisymmetry, and the sums are off by far more than round-off.
 TEST(Conservation, GatherOnlyNeighboursDoNot) {
     Sums s = conservation_sums(NeighbourCriterion::gather);
     std::printf("gather: momentum %.3e energy %.3e\n", s.momentum_ratio, s.energy_ratio);

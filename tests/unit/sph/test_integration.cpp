@@ -1,4 +1,4 @@
-// Time integration and smoothing-length update (SPEC 2, 7).
+// Time integration and smoothing-length update (physics.md §2, 7).
 #include <cmath>
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Issue 6, acceptance 4 and 5: the Evrard collapse (SPEC 9.4) from a glass, -n 25 (8.2k
+// Issue 6, acceptance 4 and 5: the Evrard collapse (physics.md §9.4) from a glass, -n 25 (8.2k
 // particles), to t = 1.2 with self-gravity: initial potential energy within 2 % of
 // -(2/3) G M^2 / R, total energy conserved within 2 % of |E_pot(0)|, kinetic energy peaking near
 // t = 1 and falling after the bounce.

@@ -55,5 +55,5 @@ TEST(Noh, N40DefaultSchemeReachesThePostShockState) {
     EXPECT_LE(shell, 1.2 * 64);
     EXPECT_GT(r_shock, 0);
     EXPECT_LE(std::abs(r_shock - r_exact), 0.1 * r_exact);
-    EXPECT_LE(energy_error, 0.01); // SPEC 9.3: total energy conserved to ~1 %
+    EXPECT_LE(energy_error, 0.01); // physics.md §9.3: total energy conserved to ~1 %
 }

@@ -1,5 +1,5 @@
-// Acceptance 6 (issue 2): rotating square patch, -n 30 to t = 0.02 s (SPEC 9.1); issue 17: the
-// paper's validation time t = 0.5 s with the case's default scheme (wc).
+// Acceptance 6 (issue 2): rotating square patch, -n 30 to t = 0.02 s (physics.md §9.1); issue 17:
+// the paper's validation time t = 0.5 s with the case's default scheme (wc).
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -47,7 +47,7 @@ TEST(SquarePatch, AngularMomentumVerticalVelocityAndThreadIndependence) {
     std::printf("L_z %.6e, E_tot %.9e, max|vz|/max|vx| %.3e\n", two.lz, two.etot,
                 two.max_vz / two.max_vx);
     EXPECT_TRUE(two.finite);
-    // Clockwise rotation (v_x = w y, v_y = -w x): L_z is negative; SPEC quotes |L_z|.
+    // Clockwise rotation (v_x = w y, v_y = -w x): L_z is negative; physics.md §9.1 quotes |L_z|.
     EXPECT_NEAR(std::abs(two.lz), 8.33e9, 0.005 * 8.33e9);
     EXPECT_LT(two.max_vz, 1e-3 * two.max_vx);
 
