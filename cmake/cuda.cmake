@@ -25,6 +25,12 @@ if(EXASPH_CUDA)
   # CMake 3.25 does not know nvcc 13's C++20 flag.
   set(CMAKE_CUDA20_STANDARD_COMPILE_OPTION -std=c++20)
   set(CMAKE_CUDA20_EXTENSION_COMPILE_OPTION -std=c++20)
+  # CMake 3.25's FindCUDAToolkit marks CUDA::nvToolsExt deprecated without checking that the
+  # library exists, and CUDA 13 no longer ships it: the configure step fails. exasph does not
+  # use it; an empty stand-in target lets Debian 12's stock CMake configure with CUDA 13.
+  if(NOT TARGET CUDA::nvToolsExt)
+    add_library(CUDA::nvToolsExt INTERFACE IMPORTED)
+  endif()
   find_package(CUDAToolkit REQUIRED)
   add_library(exasph_cuda STATIC src/cuda/runtime.cu src/cuda/device_lists.cu
                                  src/cuda/passes.cu)
