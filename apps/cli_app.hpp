@@ -7,10 +7,10 @@
 #include <CLI/CLI.hpp>
 
 #include "cli_parameters.hpp"
-#include "exasph/run/version.hpp"
 #include "exasph/cases/registry.hpp"
 #include "exasph/io/initial_conditions_file.hpp"
 #include "exasph/io/particle_io.hpp"
+#include "exasph/run/version.hpp"
 
 namespace exasph::cli {
 

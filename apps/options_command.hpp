@@ -53,8 +53,8 @@ inline std::string options_markdown(const CLI::App& app) {
     for (const CLI::Option* o : app.get_options()) {
         const std::string flags = o->get_name(false, true);
         if (flags == "-h,--help" || flags == "--version") continue;
-        out += "| " + markdown_flags(flags) + " | " + markdown_cell(o->get_description()) +
-               " | " + markdown_cell(markdown_default(*o)) + " |\n";
+        out += "| " + markdown_flags(flags) + " | " + markdown_cell(o->get_description()) + " | " +
+               markdown_cell(markdown_default(*o)) + " |\n";
     }
     return out;
 }

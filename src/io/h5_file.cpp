@@ -86,8 +86,7 @@ std::vector<V> read_1d(const Group& g, const std::string& name, hid_t memtype, s
 
 // `all_ranks`: every rank of the communicator fails the same way (e.g. a check of the file
 // itself that every rank makes), so the error ends the run cleanly instead of aborting it.
-[[noreturn]] void fail(const std::string& path, const std::string& what, int code,
-                       bool all_ranks) {
+[[noreturn]] void fail(const std::string& path, const std::string& what, int code, bool all_ranks) {
     throw Error(path + ": " + what, code, all_ranks);
 }
 

@@ -90,8 +90,7 @@ inline const CaseInfo& square_patch_case() {
         Scheme::wc,
         case_info<SquarePatchParams>(
             "square-patch",
-            "Rotating square patch (docs/physics.md §9.1), weakly compressible water, CGS",
-            false,
+            "Rotating square patch (docs/physics.md §9.1), weakly compressible water, CGS", false,
             {{"omega", &SquarePatchParams::omega, "angular velocity [rad/s]"},
              {"sound_speed", &SquarePatchParams::sound_speed, "Tait sound speed [cm/s]"},
              {"dt0", &SquarePatchParams::dt0, "first time step [s]"},

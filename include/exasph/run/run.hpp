@@ -63,8 +63,7 @@ inline std::unique_ptr<CsvTable> open_diagnostics(const Config& cfg, bool root, 
 // (config/run_file.hpp); written under a temporary name and renamed.
 inline void write_run_file(const Config& cfg) {
     const std::string path = (std::filesystem::path(cfg.out_dir) / "run.toml").string();
-    write_text_file_atomically(
-        path, run_file_text(cfg, version_text()));
+    write_text_file_atomically(path, run_file_text(cfg, version_text()));
 }
 
 namespace detail {

@@ -9,9 +9,9 @@
 #include <omp.h>
 #endif
 
-#include "exasph/run/version.hpp"
 #include "exasph/config/summary.hpp"
 #include "exasph/io/comm_matrix.hpp"
+#include "exasph/run/version.hpp"
 #include "exasph/sim/simulation.hpp"
 
 // What rank 0 prints of a run: the header, one row per step and the summary.

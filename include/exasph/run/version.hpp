@@ -9,8 +9,8 @@
 namespace exasph {
 
 inline std::string version_text() {
-    return std::string("exasph ") + kVersion + " (" + kBuildInfo + ", pair loops " +
-           kPairLoopIsa + ")";
+    return std::string("exasph ") + kVersion + " (" + kBuildInfo + ", pair loops " + kPairLoopIsa +
+           ")";
 }
 
 } // namespace exasph

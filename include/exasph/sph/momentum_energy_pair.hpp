@@ -20,11 +20,11 @@ namespace exasph {
 template <class T>
 struct MomentumEnergyPairGeometry {
     T dx, dy, dz, r, inv_r, va, vb;
-    T kwa, kwb, wa, wb;    // w(v) without and with 1/h^3, at h_a and h_b
-    T aax, aay, aaz;       // A_ab(h_a)
-    T abx, aby, abz;       // A_ab(h_b)
-    T vabx, vaby, vabz;    // v_ab
-    T vr, w_ab;            // v_ab . r_ab and that over r
+    T kwa, kwb, wa, wb; // w(v) without and with 1/h^3, at h_a and h_b
+    T aax, aay, aaz;    // A_ab(h_a)
+    T abx, aby, abz;    // A_ab(h_b)
+    T vabx, vaby, vabz; // v_ab
+    T vr, w_ab;         // v_ab . r_ab and that over r
 };
 
 // The artificial stress's share of a pair: the pressure coefficients with it (qa, qb), and with
