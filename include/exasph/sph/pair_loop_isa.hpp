@@ -1,14 +1,12 @@
 #pragma once
-// The instruction set the CPU pair loops were compiled for: AVX-512 or AVX2 lanes
-// (sph/simd_lanes.hpp), or the portable loops. Speed depends on it (docs/performance.md), so
-// --version and the run header say which.
-#include "exasph/sph/simd_lanes.hpp"
+// The instruction set the CPU pair loops were compiled for: the name of the lane set they use
+// (simd::Native, sph/simd_isa.hpp), or "portable" where the build has none. Speed depends on it
+// (docs/performance.md), so --version and the run header say which.
+#include "exasph/sph/simd_isa.hpp"
 
 namespace exasph {
-#if defined(EXASPH_SIMD_PAIRS) && defined(__AVX512F__)
-inline constexpr const char* kPairLoopIsa = "AVX-512";
-#elif defined(EXASPH_SIMD_PAIRS)
-inline constexpr const char* kPairLoopIsa = "AVX2";
+#ifdef EXASPH_SIMD_PAIRS
+inline constexpr const char* kPairLoopIsa = simd::Native::kName;
 #else
 inline constexpr const char* kPairLoopIsa = "portable";
 #endif

@@ -16,6 +16,7 @@ namespace exasph::simd {
 
 // A step of 8 pairs: floats on __m256, doubles in two halves of 4.
 struct Avx2 {
+    static constexpr const char* kName = "AVX2"; // what --version and the run header print
     using D = D4;
     using M = M4;
     using F = F8;
@@ -58,6 +59,7 @@ struct Avx2 {
 #ifdef __AVX512F__
 // A step of 16 pairs: floats on __m512, doubles in two halves of 8.
 struct Avx512 {
+    static constexpr const char* kName = "AVX-512";
     using D = D8;
     using M = M8;
     using F = F16;
