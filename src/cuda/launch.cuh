@@ -1,7 +1,7 @@
 #pragma once
 // The definitions of CudaLauncher (sph/cuda_launcher.hpp): one thread per particle calling the
-// kernel functor of sph/ by value; a result is reduced to its minimum per block in shared memory
-// and over the blocks on the host. Every call ends with the device synchronised.
+// kernel functor of sph/ by value; a result is reduced by the kernel's Reduction per block in
+// shared memory and over the blocks on the host. Every call ends with the device synchronised.
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -9,7 +9,6 @@
 #include <vector>
 
 #include <cuda_runtime.h>
-#include <math_constants.h>
 
 #include "check.cuh"
 #include "exasph/sph/cuda_launcher.hpp"
@@ -23,13 +22,18 @@ inline unsigned blocks_for(std::size_t n) {
     return unsigned((n + kThreads - 1) / kThreads);
 }
 
-// The minimum of v over the block, written by thread 0 to out[blockIdx.x].
-__device__ inline void block_min(double v, double* out) {
-    __shared__ double part[kThreads];
+// Reduction R of v over the block, written by thread 0 to out[blockIdx.x] (raw shared storage:
+// a value type with default member initialisers cannot be a __shared__ array).
+template <class R>
+__device__ inline void block_reduce(typename R::value_type v, typename R::value_type* out) {
+    using V = typename R::value_type;
+    __shared__ alignas(V) unsigned char raw[kThreads * sizeof(V)];
+    V* part = reinterpret_cast<V*>(raw);
     part[threadIdx.x] = v;
     __syncthreads();
     for (unsigned s = kThreads / 2; s > 0; s /= 2) {
-        if (threadIdx.x < s) part[threadIdx.x] = fmin(part[threadIdx.x], part[threadIdx.x + s]);
+        if (threadIdx.x < s)
+            part[threadIdx.x] = R::combine(part[threadIdx.x], part[threadIdx.x + s]);
         __syncthreads();
     }
     if (threadIdx.x == 0) out[blockIdx.x] = part[0];
@@ -42,9 +46,10 @@ __global__ void particles(Kernel k, std::uint32_t n) {
 }
 
 template <class Kernel>
-__global__ void particles_min(Kernel k, std::uint32_t n, double* out) {
+__global__ void particles_reduce(Kernel k, std::uint32_t n, ResultOf<Kernel>* out) {
+    using R = ReductionOf<Kernel>;
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    block_min(i < n ? double(k(i)) : CUDART_INF, out);
+    block_reduce<R>(i < n ? R::combine(R::identity(), k(i)) : R::identity(), out);
 }
 
 // The particles idx[0, n) (block time steps: the active ones; idx in managed memory).
@@ -55,51 +60,57 @@ __global__ void particles_of(Kernel k, const std::uint32_t* idx, std::uint32_t n
 }
 
 template <class Kernel>
-__global__ void particles_of_min(Kernel k, const std::uint32_t* idx, std::uint32_t n, double* out) {
+__global__ void particles_of_reduce(Kernel k, const std::uint32_t* idx, std::uint32_t n,
+                                    ResultOf<Kernel>* out) {
+    using R = ReductionOf<Kernel>;
     const std::uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
-    block_min(s < n ? double(k(idx[s])) : CUDART_INF, out);
+    block_reduce<R>(s < n ? R::combine(R::identity(), k(idx[s])) : R::identity(), out);
 }
 
-// Slot s of the lists is particle member[s] (member null: s).
-template <class Kernel>
+// Slot s of the lists is particle member[s] (member null: s); `out` only for a kernel that
+// reduces.
+template <class Kernel, class Out>
 __global__ void neighbourhoods(Kernel k, const std::uint32_t* index, const std::uint64_t* offset,
                                const std::uint32_t* count, const std::uint32_t* member,
-                               std::uint32_t n, double* out) {
+                               std::uint32_t n, Out* out) {
     const std::uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
-    constexpr bool kMin = kReduces<Kernel>;
-    double v = CUDART_INF;
-    if (s < n) {
+    const auto visit = [&] {
         const NeighbourSpan nb = BatchLayout::span(index, offset, count, s);
-        const std::uint32_t i = member ? member[s] : s;
-        if constexpr (kMin)
-            v = double(k(i, nb));
-        else
-            k(i, nb);
+        return k(member ? member[s] : s, nb);
+    };
+    if constexpr (kReduces<Kernel>) {
+        using R = ReductionOf<Kernel>;
+        block_reduce<R>(s < n ? R::combine(R::identity(), visit()) : R::identity(), out);
+    } else if (s < n) {
+        visit();
     }
-    if constexpr (kMin) block_min(v, out);
 }
 
-// Per-block minima on the device, their minimum on the host.
-class BlockMinima {
+// Per-block results of reduction R on the device, combined on the host in block order.
+template <class R>
+class BlockResults {
   public:
-    explicit BlockMinima(unsigned blocks) : host_(blocks) {
-        cuda::check(cudaMalloc(&dev_, std::max(1u, blocks) * sizeof(double)),
+    using V = typename R::value_type;
+    explicit BlockResults(unsigned blocks) : host_(blocks) {
+        cuda::check(cudaMalloc(&dev_, std::max(1u, blocks) * sizeof(V)),
                     "allocating the reduction buffer");
     }
-    ~BlockMinima() { cudaFree(dev_); }
-    double* device() { return dev_; }
-    double least() {
+    ~BlockResults() { cudaFree(dev_); }
+    BlockResults(const BlockResults&) = delete;
+    BlockResults& operator=(const BlockResults&) = delete;
+    V* device() { return dev_; }
+    V combined() {
         cuda::check(
-            cudaMemcpy(host_.data(), dev_, host_.size() * sizeof(double), cudaMemcpyDeviceToHost),
+            cudaMemcpy(host_.data(), dev_, host_.size() * sizeof(V), cudaMemcpyDeviceToHost),
             "reading a reduction");
-        double m = std::numeric_limits<double>::infinity();
-        for (double v : host_) m = std::min(m, v);
-        return m;
+        V total = R::identity();
+        for (const V& v : host_) total = R::combine(total, v);
+        return total;
     }
 
   private:
-    std::vector<double> host_;
-    double* dev_ = nullptr;
+    std::vector<V> host_;
+    V* dev_ = nullptr;
 };
 
 inline void finish(const char* what) {
@@ -118,14 +129,15 @@ void CudaLauncher::for_each(std::size_t n, const Kernel& k) {
 }
 
 template <class Kernel>
-double CudaLauncher::reduce_min(std::size_t n, const Kernel& k) {
-    if (n == 0) return std::numeric_limits<double>::infinity();
+ResultOf<Kernel> CudaLauncher::reduce(std::size_t n, const Kernel& k) {
+    using R = ReductionOf<Kernel>;
+    if (n == 0) return R::identity();
     const unsigned blocks = cuda_detail::blocks_for(n);
-    cuda_detail::BlockMinima minima(blocks);
-    cuda_detail::particles_min<<<blocks, cuda_detail::kThreads>>>(k, std::uint32_t(n),
-                                                                  minima.device());
+    cuda_detail::BlockResults<R> results(blocks);
+    cuda_detail::particles_reduce<<<blocks, cuda_detail::kThreads>>>(k, std::uint32_t(n),
+                                                                     results.device());
     cuda_detail::finish("running a particle reduction");
-    return minima.least();
+    return results.combined();
 }
 
 template <class Kernel>
@@ -137,26 +149,37 @@ void CudaLauncher::for_each_of(const std::uint32_t* idx, std::size_t n, const Ke
 }
 
 template <class Kernel>
-double CudaLauncher::reduce_min_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
-    if (n == 0) return std::numeric_limits<double>::infinity();
+ResultOf<Kernel> CudaLauncher::reduce_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
+    using R = ReductionOf<Kernel>;
+    if (n == 0) return R::identity();
     const unsigned blocks = cuda_detail::blocks_for(n);
-    cuda_detail::BlockMinima minima(blocks);
-    cuda_detail::particles_of_min<<<blocks, cuda_detail::kThreads>>>(k, idx, std::uint32_t(n),
-                                                                     minima.device());
+    cuda_detail::BlockResults<R> results(blocks);
+    cuda_detail::particles_of_reduce<<<blocks, cuda_detail::kThreads>>>(k, idx, std::uint32_t(n),
+                                                                        results.device());
     cuda_detail::finish("running a reduction over the active particles");
-    return minima.least();
+    return results.combined();
 }
 
 template <class T, class Kernel>
-double CudaLauncher::for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k) {
+ResultOf<Kernel> CudaLauncher::for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k) {
     const std::size_t n = nl.size();
-    if (n == 0) return std::numeric_limits<double>::infinity();
     const unsigned blocks = cuda_detail::blocks_for(n);
-    cuda_detail::BlockMinima minima(kReduces<Kernel> ? blocks : 0);
-    cuda_detail::neighbourhoods<<<blocks, cuda_detail::kThreads>>>(
-        k, nl.index(), nl.offset(), nl.count(), nl.member(), std::uint32_t(n), minima.device());
-    cuda_detail::finish("running a neighbour pass");
-    return kReduces<Kernel> ? minima.least() : std::numeric_limits<double>::infinity();
+    if constexpr (kReduces<Kernel>) {
+        using R = ReductionOf<Kernel>;
+        if (n == 0) return R::identity();
+        cuda_detail::BlockResults<R> results(blocks);
+        cuda_detail::neighbourhoods<<<blocks, cuda_detail::kThreads>>>(
+            k, nl.index(), nl.offset(), nl.count(), nl.member(), std::uint32_t(n),
+            results.device());
+        cuda_detail::finish("running a neighbour pass");
+        return results.combined();
+    } else {
+        if (n == 0) return;
+        cuda_detail::neighbourhoods<<<blocks, cuda_detail::kThreads>>>(
+            k, nl.index(), nl.offset(), nl.count(), nl.member(), std::uint32_t(n),
+            static_cast<char*>(nullptr));
+        cuda_detail::finish("running a neighbour pass");
+    }
 }
 
 } // namespace exasph

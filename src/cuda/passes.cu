@@ -16,17 +16,18 @@ namespace exasph {
 
 #define EXASPH_CUDA_FOR_EACH(...)                                                                  \
     template void CudaLauncher::for_each<__VA_ARGS__>(std::size_t, const __VA_ARGS__&);
-#define EXASPH_CUDA_REDUCE_MIN(...)                                                                \
-    template double CudaLauncher::reduce_min<__VA_ARGS__>(std::size_t, const __VA_ARGS__&);
+#define EXASPH_CUDA_REDUCE(...)                                                                    \
+    template ResultOf<__VA_ARGS__> CudaLauncher::reduce<__VA_ARGS__>(std::size_t,                  \
+                                                                     const __VA_ARGS__&);
 #define EXASPH_CUDA_NEIGHBOURS(...)                                                                \
-    template double CudaLauncher::for_each_neighbourhood<double, __VA_ARGS__>(                     \
+    template ResultOf<__VA_ARGS__> CudaLauncher::for_each_neighbourhood<double, __VA_ARGS__>(      \
         const DeviceLists<double>&, const __VA_ARGS__&);
 #define EXASPH_CUDA_FOR_EACH_OF(...)                                                               \
     template void CudaLauncher::for_each_of<__VA_ARGS__>(const std::uint32_t*, std::size_t,        \
                                                          const __VA_ARGS__&);
-#define EXASPH_CUDA_REDUCE_MIN_OF(...)                                                             \
-    template double CudaLauncher::reduce_min_of<__VA_ARGS__>(const std::uint32_t*, std::size_t,    \
-                                                             const __VA_ARGS__&);
+#define EXASPH_CUDA_REDUCE_OF(...)                                                                 \
+    template ResultOf<__VA_ARGS__> CudaLauncher::reduce_of<__VA_ARGS__>(                           \
+        const std::uint32_t*, std::size_t, const __VA_ARGS__&);
 // A particle-wise pass that runs over all particles or the active ones (ParticleRange).
 #define EXASPH_CUDA_FOR_EACH_IN(...)                                                               \
     EXASPH_CUDA_FOR_EACH(__VA_ARGS__) EXASPH_CUDA_FOR_EACH_OF(__VA_ARGS__)
@@ -57,20 +58,21 @@ namespace exasph {
     EXASPH_CUDA_FOR_EACH_IN(ViscosityKernel<double, N>)                                            \
     EXASPH_CUDA_FOR_EACH_IN(VolumeWeightKernel<double, N>)                                         \
     EXASPH_CUDA_FOR_EACH(StirKernel<double, N>)                                                    \
-    EXASPH_CUDA_REDUCE_MIN(AccelerationStepKernel<double, N>)                                      \
-    EXASPH_CUDA_REDUCE_MIN(SkinUseKernel<double, N>)                                               \
+    EXASPH_CUDA_REDUCE(AccelerationStepKernel<double, N>)                                          \
+    EXASPH_CUDA_REDUCE(SkinUseKernel<double, N>)                                                   \
     EXASPH_CUDA_BLOCK_STEPS(N)
 
 // Block time steps (sph/block_passes.hpp).
 #define EXASPH_CUDA_BLOCK_STEPS(N)                                                                 \
     EXASPH_CUDA_FOR_EACH_OF(OwnStepLimitKernel<double, N>)                                         \
-    EXASPH_CUDA_REDUCE_MIN_OF(CloseStepKernel<double, N>)                                          \
+    EXASPH_CUDA_REDUCE_OF(CloseStepKernel<double, N>)                                              \
     EXASPH_CUDA_NEIGHBOURS(RungNeedKernel<double, N>)                                              \
-    EXASPH_CUDA_REDUCE_MIN(OpenStepKernel<double, N>)                                              \
+    EXASPH_CUDA_REDUCE(OpenStepKernel<double, N>)                                                  \
     EXASPH_CUDA_FOR_EACH(DriftKernel<double, N>)
 
 EXASPH_CUDA_PASSES(float)
 EXASPH_CUDA_PASSES(double)
-EXASPH_CUDA_REDUCE_MIN(ScaledValueKernel<double>)
+EXASPH_CUDA_REDUCE(ValueKernel<double, MinOf<double>>)
+EXASPH_CUDA_REDUCE(ValueKernel<double, MaxOf<double>>)
 
 } // namespace exasph

@@ -21,20 +21,20 @@ __global__ void neighbour_pass(Kernel k, const std::uint32_t* lists, std::uint32
     if (i >= n) return;
     // Interleaved lists: neighbour j of particle i at lists[j * n + i].
     const NeighbourSpan nb{lists + i, count, n};
-    if constexpr (std::is_void_v<decltype(k(i, nb))>)
-        k(i, nb);
+    if constexpr (kReduces<Kernel>)
+        reinterpret_cast<ResultOf<Kernel>*>(out)[i] = k(i, nb); // out: 8 bytes per particle
     else
-        out[i] = double(k(i, nb));
+        k(i, nb);
 }
 
 template <class Kernel>
 __global__ void particle_pass(Kernel k, std::uint32_t n, double* out) {
     const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= n) return;
-    if constexpr (std::is_void_v<decltype(k(i))>)
-        k(i);
+    if constexpr (kReduces<Kernel>)
+        reinterpret_cast<ResultOf<Kernel>*>(out)[i] = k(i);
     else
-        out[i] = double(k(i));
+        k(i);
 }
 
 template <class T>

@@ -61,25 +61,27 @@ class Domain {
     // Migration, SFC sort, local tree, halo discovery and the exchange of the kHaloSync fields:
     // count_particles() then distribute().
     void sync(ParticleSet<T>& ps, const Box<T>& box) {
-        if (!count_particles(ps, box)) distribute(ps, box);
+        count_particles(ps, box);
+        distribute(ps, box);
     }
 
     // The first half of the sync: the SFC keys and the one collective of the sync (the global
-    // tree counts and maximum h). The collective also carries a per-rank vote (e.g. corrupted
-    // state found before the step); returns whether any rank raised it, in which case the
-    // caller must not call distribute() and nothing has changed. Otherwise the particles are
-    // still where they were (a state that may be saved) until distribute() moves them.
+    // tree counts and maximum h). Requires: the owned particles [0, n_owned()) with positions in
+    // `box` (halos are dropped). The collective also carries the run-control flags when given
+    // (every rank's raised flags are seen by all after it: ControlFlags), so that a rank's vote
+    // (e.g. corrupted state found before the step) needs no collective of its own. Guarantees:
+    // the particles are still where they were (a state that may be saved, or abandoned without
+    // calling distribute()) until distribute() moves them.
     // With `cost` (one per owned particle, --balance cost) the collective also sums it per leaf
     // and distribute() cuts the curve by cost (domain/cost_balance.hpp).
-    bool count_particles(ParticleSet<T>& ps, const Box<T>& box, bool local_vote = false,
+    void count_particles(ParticleSet<T>& ps, const Box<T>& box, ControlFlags* flags = nullptr,
                          const float* cost = nullptr) {
         ps.resize(n_owned_); // drop last step's halos
         coll_.record().start_step();
         keys_ = compute_keys(ps, box);
         leaf_ = leaves_of(keys_);
-        counts_ = reduce_leaf_counts(ps.data(Field::h), leaf_, tree_.num_leaves(), coll_,
-                                     local_vote, cost);
-        return counts_.any_vote;
+        counts_ =
+            reduce_leaf_counts(ps.data(Field::h), leaf_, tree_.num_leaves(), coll_, flags, cost);
     }
 
     // The second half: migration, sort, local tree, halos.

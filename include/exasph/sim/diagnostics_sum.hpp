@@ -4,7 +4,7 @@
 
 #include "exasph/domain/box_extent.hpp"
 #include "exasph/domain/collectives.hpp"
-#include "exasph/sim/control_flags.hpp"
+#include "exasph/domain/control_flags.hpp"
 #include "exasph/sim/diagnostics.hpp"
 
 namespace exasph {

@@ -9,7 +9,6 @@
 #include "exasph/sim/phases.hpp"
 #include "exasph/sph/passes.hpp"
 #include "exasph/tree/neighbour_groups.hpp"
-#include "exasph/util/timer.hpp"
 
 namespace exasph {
 
@@ -22,7 +21,9 @@ constexpr bool splits_groups() {
         return false;
 }
 
-// The passes of physics.md §3-6 with what they need from the step, each timed as its phase.
+// What the passes of physics.md §3-6 read besides the particles and the lists: the box, the
+// kernel, the EOS, the run's configuration, self-gravity (or null: none) and whether this is
+// the run's first step. Holds references: lives within the step that made it.
 template <class T>
 struct HydroInputs {
     const Box<T>& box;
@@ -58,17 +59,17 @@ struct HydroInputs {
 
 // One exchange after each pass: density (+ EOS, zeta), its halos, IAD and its halos, momentum and
 // energy.
-template <class L, class T, class Lists, class Wrap>
+template <class L, class T, class Lists, class EndPhase, class Wrap>
 double hydro_passes_in_turn(ParticleSet<T>& ps, const Lists& nl, const HydroInputs<T>& in,
-                            Domain<T>& domain, PhaseTimer<kNumPhases>& timer, Wrap wrap) {
+                            Domain<T>& domain, EndPhase end_phase, Wrap wrap) {
     in.template density<L>(ps, nl);
-    timer.stop(kDensity);
+    end_phase(kDensity);
     domain.exchange_halos(ps, kHaloDensity);
-    timer.stop(kDensityHalos);
+    end_phase(kDensityHalos);
     const auto diss = in.dissipation();
     in.template iad<L>(ps, nl, diss);
     domain.exchange_halos(ps, in.iad_halos());
-    timer.stop(kIad);
+    end_phase(kIad);
     return in.template momentum_energy<L>(ps, nl, diss, wrap);
 }
 
@@ -89,10 +90,10 @@ double while_in_flight(const NeighbourGroups<T>& part, Domain<T>& domain, Posted
 // density of the particles other ranks receive comes first, its exchange is posted, the other
 // densities and the IAD of the groups with only owned neighbours follow; then the IAD of the
 // groups that read halos, its exchange posted, the momentum-energy of the owned-only groups.
-template <class L, class T, class Wrap>
+template <class L, class T, class EndPhase, class Wrap>
 double hydro_passes_overlapped(ParticleSet<T>& ps, const NeighbourLists<T>& nl,
-                               const HydroInputs<T>& in, Domain<T>& domain,
-                               PhaseTimer<kNumPhases>& timer, Wrap wrap) {
+                               const HydroInputs<T>& in, Domain<T>& domain, EndPhase end_phase,
+                               Wrap wrap) {
     const auto parts = split_for_halo_overlap(nl, domain.sent_flags());
     const auto diss = in.dissipation();
     auto density = [&](const NeighbourGroups<T>& p) { return in.template density<L>(ps, p), 0; };
@@ -103,18 +104,18 @@ double hydro_passes_overlapped(ParticleSet<T>& ps, const NeighbourLists<T>& nl,
     density(parts.sending);
     PostedHalos density_halos = domain.post_halos(ps, kHaloDensity);
     while_in_flight(parts.not_sending, domain, density_halos, density);
-    timer.stop(kDensity);
+    end_phase(kDensity);
     while_in_flight(parts.owned_only, domain, density_halos, iad);
-    timer.stop(kIad);
+    end_phase(kIad);
     domain.finish_halos(ps, density_halos);
-    timer.stop(kDensityHalos);
+    end_phase(kDensityHalos);
     iad(parts.reading_halos);
     PostedHalos iad_halos = domain.post_halos(ps, in.iad_halos());
-    timer.stop(kIad);
+    end_phase(kIad);
     const double owned = while_in_flight(parts.owned_only, domain, iad_halos, momentum_energy);
-    timer.stop(kMomentumEnergy);
+    end_phase(kMomentumEnergy);
     domain.finish_halos(ps, iad_halos);
-    timer.stop(kIad);
+    end_phase(kIad);
     return std::min(owned, momentum_energy(parts.reading_halos));
 }
 
@@ -124,24 +125,22 @@ double hydro_passes_overlapped(ParticleSet<T>& ps, const NeighbourLists<T>& nl,
 // gravity the softening's force. Returns the Courant limit of the pass (+infinity when `wrap`
 // keeps each particle's own). On several ranks with a launcher that splits passes the halo
 // exchanges overlap the work (unless --no-halo-overlap).
-template <class L, class T, class Lists, class Wrap>
-double hydro_forces(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const KernelView<T>& k,
-                    const EosParams& eos, const Config& cfg, Domain<T>& domain,
-                    const GravitySolver<T>* gravity, PhaseTimer<kNumPhases>& timer, bool first,
-                    Wrap wrap) {
-    if (first && cfg.volume_elements)
-        settle_volume_weights<L>(ps, nl, box, k, eos, domain.n_owned(), cfg.energy_weights,
+template <class L, class T, class Lists, class EndPhase, class Wrap>
+double hydro_forces(ParticleSet<T>& ps, const Lists& nl, const HydroInputs<T>& in,
+                    Domain<T>& domain, EndPhase end_phase, Wrap wrap) {
+    if (in.first && in.cfg.volume_elements)
+        settle_volume_weights<L>(ps, nl, in.box, in.k, in.eos, domain.n_owned(),
+                                 in.cfg.energy_weights,
                                  [&] { domain.exchange_halos(ps, kHaloSync); });
-    const HydroInputs<T> in{box, k, eos, cfg, gravity, first};
     double courant = 0;
     if constexpr (splits_groups<L>() && std::is_same_v<Lists, NeighbourLists<T>>) {
-        courant = domain.nranks() > 1 && !cfg.no_halo_overlap
-                      ? hydro_passes_overlapped<L>(ps, nl, in, domain, timer, wrap)
-                      : hydro_passes_in_turn<L>(ps, nl, in, domain, timer, wrap);
+        courant = domain.nranks() > 1 && !in.cfg.no_halo_overlap
+                      ? hydro_passes_overlapped<L>(ps, nl, in, domain, end_phase, wrap)
+                      : hydro_passes_in_turn<L>(ps, nl, in, domain, end_phase, wrap);
     } else {
-        courant = hydro_passes_in_turn<L>(ps, nl, in, domain, timer, wrap);
+        courant = hydro_passes_in_turn<L>(ps, nl, in, domain, end_phase, wrap);
     }
-    if (gravity) add_softening_correction<L>(ps, nl, k); // physics.md §8's softening
+    if (in.gravity) add_softening_correction<L>(ps, nl, in.k); // physics.md §8's softening
     return courant;
 }
 

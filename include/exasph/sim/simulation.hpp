@@ -7,6 +7,7 @@
 
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/config/config.hpp"
+#include "exasph/domain/control_flags.hpp"
 #include "exasph/domain/domain.hpp"
 #include "exasph/gravity/gravity_solver.hpp"
 #include "exasph/io/output_state.hpp"
@@ -14,7 +15,6 @@
 #include "exasph/kernel/sinc_kernel.hpp"
 #include "exasph/sim/advance.hpp"
 #include "exasph/sim/block_clock.hpp"
-#include "exasph/sim/control_flags.hpp"
 #include "exasph/sim/diagnostics_sum.hpp"
 #include "exasph/sim/hydro_forces.hpp"
 #include "exasph/sim/initial_potential.hpp"
@@ -29,12 +29,18 @@
 
 namespace exasph {
 
-// One SPH simulation: the step pipeline of docs/architecture.md, each phase timed. Runs on any
-// number of MPI ranks of `comm` (one rank included); results do not depend on ranks or threads
-// beyond round-off. Collectives per step: global tree counts (sync), minimum dt, diagnostics
-// (with --sync-every and --diagnostics-every a typical step makes only the second,
-// sim/sync_schedule.hpp); with self-gravity one more (the leaf multipoles). The SPH passes run
-// through the launcher L.
+// One SPH simulation: the step pipeline of docs/architecture.md, each phase timed, guarded by the
+// safety net (sim/safety.hpp). The SPH passes run through the launcher L.
+// Requires: every rank of `comm` (one rank included) constructs it with the same Config and
+// calls step() as often as the others (each step makes collectives: global tree counts at a
+// sync, minimum dt, diagnostics; with --sync-every and --diagnostics-every a typical step makes
+// only the second, sim/sync_schedule.hpp; with self-gravity one more, the leaf multipoles);
+// `ic` holds this rank's share of the particles (any share: the first sync balances them).
+// Guarantees: after each step() every rank holds a state the net found clean, either the step's
+// (diagnostics() of step_count(), summed() or not) or, when any rank detected corruption, the
+// last verified one (recovered(), on every rank alike); the owned particles are [0, n_owned())
+// in the order of the last sync, halos after them. Results do not depend on ranks or threads
+// beyond round-off.
 template <class T, class L = DefaultLauncher>
 class Simulation {
   public:
@@ -47,7 +53,8 @@ class Simulation {
         : cfg_(cfg), ps_(std::move(ic.particles)), box_(ic.box), eos_(ic.eos),
           kernel_(sinc_kernel(cfg.kernel_exponent)), nlists_(std::uint32_t(cfg.ngmax)),
           domain_(comm, std::uint32_t(cfg.global_bucket), std::uint32_t(cfg.leaf_size), cfg.curve),
-          safety_(cfg, domain_.rank()), clock_{ic.dt0, ic.dt0, 0.0, -1.0, 0},
+          safety_(cfg, domain_.rank()),
+          safety_on_(cfg.on_sdc != SdcPolicy::off), clock_{ic.dt0, ic.dt0, 0.0, -1.0, 0},
           sched_(cfg.sync_every, cfg.diagnostics_every), exact_(std::move(ic.exact)) {
         enable_run_fields(ps_, cfg, eos_, domain_.collectives());
         start_gravity(gravity_, ps_, box_, kernel_, cfg, cfg.G >= 0 ? cfg.G : ic.G);
@@ -68,63 +75,21 @@ class Simulation {
             diag_.etot = diag_.ekin + diag_.eint + diag_.epot;
         }
         mass0_ = diag_.mass;
-        safety_.seal(ps_, n_owned());
-        timer_.observe([this](std::size_t p) {
-            if (safety_.after_phase(p, ps_, n_owned())) flags_.raise(kStateChanged);
-        });
     }
 
-    // One step of the pipeline, or a rollback (recovered()) when corruption was found.
+    // One step of the pipeline, each phase ended by end_phase(); the safety net's verdict at
+    // the end, where a detection on any rank rolls every rank back (recovered()).
     void step() {
-        timer_.begin_step();
-        recovered_ = false;
-        flags_.begin_step();
-        const Box<T> fitted = box_fresh_ ? box_ : with_open_axes_unbounded(box_); // to check
-        const bool corrupt = safety_.corrupted_before(
-            ps_, n_owned(), fitted, clock_.step + 1, clock_.dt_m1, eos_.kind == EosKind::ideal_gas);
-        point_pending_ |= safety_.point_due(clock_.step); // block steps: waits for a block's end
-        if (point_pending_) sched_.ask_sync();            // a rollback point follows a sync's vote
-        if (!sched_.sync_due()) {
-            if (corrupt) flags_.raise(kCorruptBefore);
-            domain_.refresh(ps_);
-        } else if (!sync_domain(corrupt)) {
-            return;
+        begin_step();
+        if (sync_or_refresh()) {
+            find_neighbours();
+            end_phase(kNeighbours);
+            compute_forces();
+            const double dt = choose_time_step();
+            end_phase(kTimeStep);
+            if (!refused_before_update()) advance_and_diagnose(dt);
         }
-        timer_.stop(kSync);
-        find_neighbours();
-        timer_.stop(kNeighbours);
-        courant_dt_ = hydro_forces<L>(ps_, nlists_, box_, kernel_.view(), eos_, cfg_, domain_,
-                                      gravity_ ? &*gravity_ : nullptr, timer_, clock_.step == 0,
-                                      store_results_in(blocks_ ? ps_.data(Field::dtc) : nullptr));
-        if (!blocks_) nlists_.release(); // the sync can use their memory
-        timer_.stop(kMomentumEnergy);
-        if (gravity_)
-            gravity_->compute(ps_, n_owned(), domain_.assignment(), box_, domain_.curve(),
-                              domain_.collectives(), blocks_ ? blocks_->active() : nullptr);
-        if (stirring_) add_stirring<L>(ps_, n_owned(), stirring_->modes());
-        timer_.stop(kGravity);
-        const double dt = choose_time_step();
-        timer_.stop(kTimeStep);
-        if (flags_[kCorruptBefore]) // voted in the time step's collective (no sync this step)
-            return roll_back("the state check before step " + std::to_string(clock_.step + 1),
-                             clock_.step + 1);
-        if (sched_.votes() && flags_[kStateChanged]) // found after the last step's collectives
-            return roll_back("the step's seals by step " + std::to_string(clock_.step + 1),
-                             clock_.step + 1);
-        advance(dt);
-        const Diagnostics before = diag_;
-        const bool forced = // the run's end, or a stop or a clock checkpoint after the step
-            clock_.ends(cfg_.steps) || flags_[kStopRequested] || flags_[kCheckpointByClock];
-        summed_ = sched_.diagnose_due(clock_.step, safety_.on(), forced);
-        diagnose(dt, summed_);
-        const bool consecutive = summed_ && before.step + 1 == diag_.step; // for the watchdog
-        if (const auto by =
-                safety_.verdict_after(ps_, n_owned(), consecutive ? &before : nullptr, diag_,
-                                      mass0_, !gravity_ && !stirring_, flags_[kStateChanged]);
-            !by.empty())
-            return roll_back(by + " after step " + std::to_string(clock_.step), clock_.step);
-        timer_.stop(kDiagnostics);
-        timer_.end_step();
+        conclude();
     }
 
     // Silent-data-corruption handling (sim/safety.hpp); recovered(): the last step() rolled
@@ -181,96 +146,48 @@ class Simulation {
     const std::array<double, kNumPhases>& total_phase_times() const { return timer_.total_times(); }
 
   private:
-    // The domain's sync (count, migrate, sort, trees, halos); false after a rollback that the
-    // corruption vote in its collective brought. Between diagnostics sums (--sync-every) the
-    // box may be older than the positions: its open axes are fitted again first.
-    bool sync_domain(bool corrupt) {
-        if (!box_fresh_) refit_box_to_particles(ps_, n_owned(), box_, domain_.collectives());
-        const bool by_cost = cfg_.balance == Balance::cost && blocks_;
-        const float* cost = by_cost ? blocks_->costs(ps_, n_owned()) : nullptr;
-        if (domain_.count_particles(ps_, box_, corrupt, cost)) {
-            roll_back("the state check before step " + std::to_string(clock_.step + 1),
-                      clock_.step + 1);
-            return false;
-        }
-        if (point_pending_ && at_sync_point())
-            safety_.keep_point(ps_, n_owned(), run_point()), point_pending_ = false;
-        domain_.distribute(ps_, box_);
-        if (blocks_) blocks_->select(ps_, n_owned(), work_);
-        sched_.synced(n_owned());
-        return true;
+    // The step's start: its clock and flags, the safety net's check of the state at rest (its
+    // vote travels in the step's first collective that carries the flags).
+    void begin_step();
+    // The end of a phase: its time, then the safety net's look at what it made (a change it
+    // finds is voted as kStateChanged).
+    void end_phase(Phase p);
+    // The domain's sync (count, migrate, sort, trees, halos) or, between syncs, its refresh;
+    // false when the sync's collective brought a rank's corruption vote (the step stops there,
+    // the particles not moved). Between diagnostics sums (--sync-every) the box may be older
+    // than the positions: its open axes are fitted again first.
+    bool sync_or_refresh();
+    // physics.md §3-6 and 8: the SPH passes (phases density .. momentum_energy), self-gravity
+    // and the stirring force (phase gravity).
+    void compute_forces();
+    auto phase_ender() {
+        return [this](Phase p) { end_phase(p); };
     }
-
+    // Whether a vote seen by now refuses the update: a rank's state check before the step, or,
+    // when the time step's collective carries the flags, a rank's seals.
+    bool refused_before_update() const {
+        return flags_[kCorruptBefore] || (sched_.votes() && flags_[kStateChanged]);
+    }
+    // The update and the diagnostics of a step no vote has refused so far.
+    void advance_and_diagnose(double dt);
+    // The one place a step ends: it stands (phase diagnostics ends) or, on every rank alike,
+    // rolls back to the last verified state.
+    void conclude();
     void resume(const RestartState& rs) {
         clock_.time = rs.time, clock_.step = rs.step, clock_.dt_m1 = rs.dt_m1;
         if (blocks_) blocks_->resume(rs.dt_m1, rs.block);
         domain_.restore(ps_, rs.leaf_keys);
         if (stirring_) stirring_->restore(rs.stir);
     }
-
-    void find_neighbours() {
-        const auto res = build_neighbour_lists(nlists_, domain_, ps_, box_,
-                                               blocks_ ? blocks_->active() : nullptr);
-        max_list_ = res.max_count;
-        work_.active = double(blocks_ ? blocks_->active_count() : n_owned()),
-        work_.pairs = double(res.pairs);
-    }
-
+    void find_neighbours();
     // physics.md §7 (sim/global_step.hpp), or the rungs of block time steps (sim/block_clock.hpp).
-    double choose_time_step() {
-        const double accel = gravity_ ? cfg_.accel_eps : 0.0;
-        if (blocks_) { // closing and opening the steps updates the state: check it first
-            if (safety_.changed_before_update(ps_, n_owned())) flags_.raise(kStateChanged);
-            const double dt =
-                blocks_->choose(ps_, n_owned(), nlists_, domain_,
-                                {clock_.step == 0, clock_.dt0, accel, clock_.time, clock_.t_end});
-            nlists_.release();
-            return dt;
-        }
-        const double limit = local_time_step_limit<L>(ps_, n_owned(), courant_dt_, accel);
-        if (!sched_.votes()) return clock_.step_from(domain_.collectives().allreduce_min(limit));
-        return sched_.voted_step<L>(ps_, n_owned(), limit, clock_, cfg_.ng0, domain_, flags_);
-    }
-
+    double choose_time_step();
     // physics.md §7 and 2 (sim/advance.hpp).
-    void advance(double dt) {
-        const double t_next =
-            advance_state<L>(ps_, n_owned(), box_, blocks_ ? &*blocks_ : nullptr, cfg_, dt,
-                             clock_.dt_m1, clock_.time, safety_, flags_, timer_);
-        if (stirring_) stirring_->advance(clock_.step, dt);
-        clock_.stepped(dt, t_next);
-        box_fresh_ = false, sched_.stepped();
-    }
-
+    void advance(double dt);
     RunPoint<T> run_point() const { return {restart_state(), box_, diag_}; }
-
-    // All ranks, after a detection by `where` in step `step`: back to the last verified state.
-    void roll_back(const std::string& where, std::int64_t step) {
-        const RunPoint<T>& point = safety_.roll_back(ps_, where, step, clock_.step);
-        box_ = point.box, box_fresh_ = true;
-        diag_ = point.diag;
-        sched_.ask_sync(); // the halos and trees belong to the state left behind
-        resume(point.rs);
-        safety_.seal(ps_, n_owned());
-        recovered_ = true;
-        timer_.end_step();
-    }
-
     // physics.md §10 sums, run-control flags and the particles' extent (next box): one collective.
     // A step without it (--diagnostics-every) notes only what every rank knows.
-    void diagnose(double dt, bool summed = true) {
-        const double waited = domain_.comm_record().waited_in_step(); // compute: the rest
-        work_.compute_sum = work_.compute_max = std::max(0.0, timer_.step_total() - waited);
-        if (summed)
-            diag_ = sum_diagnostics(ps_, n_owned(), domain_.n_halo(), exact_, clock_.time - dt,
-                                    clock_.step > 0, cfg_.ng0, work_, flags_, box_,
-                                    domain_.collectives());
-        diag_.step = clock_.step, diag_.time = clock_.time, diag_.dt = dt;
-        if (!summed) return;
-        if (stirring_) stirring_->add_energy(dt * diag_.stir_power);
-        diag_.e_stir = stirring_ ? stirring_->state().energy_in : 0.0;
-        box_fresh_ = true;
-    }
+    void diagnose(double dt, bool summed = true);
 
     Config cfg_;
     ParticleSet<T> ps_;
@@ -281,7 +198,9 @@ class Simulation {
     Domain<T> domain_;
     SafetyNet<T> safety_;
     PhaseTimer<kNumPhases> timer_;
-    Diagnostics diag_;
+    Diagnostics diag_, before_; // before_: the last step's, for the watchdog
+    StepOutcome outcome_;       // what the step in progress brings to the net's verdict
+    bool safety_on_ = false;    // --on-sdc other than off: the watchdog compares steps
     double mass0_ = 0;
     StepClock clock_;
     double courant_dt_ = 0; // Courant limit of this step's particles (momentum-energy pass)
@@ -298,3 +217,5 @@ class Simulation {
 };
 
 } // namespace exasph
+
+#include "exasph/sim/simulation_step.hpp"

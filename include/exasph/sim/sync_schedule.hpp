@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "exasph/domain/collectives.hpp"
-#include "exasph/sim/control_flags.hpp"
+#include "exasph/domain/control_flags.hpp"
 #include "exasph/sim/global_step.hpp"
 #include "exasph/sph/passes.hpp"
 #include "exasph/util/error.hpp"

@@ -4,6 +4,7 @@
 
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/sph/block_step.hpp"
+#include "exasph/sph/reduction.hpp"
 #include "exasph/sph/timestep.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/atomic_max.hpp"
@@ -49,7 +50,7 @@ struct OwnStepLimitKernel {
 
 // At the end of an active particle's step: the closing half kick with this step's forces, then
 // its next rung from its own limit, moved only to a rung whose synchronisation points include
-// this tick. Returns i if even the shortest rung is too long for it, else 1e300.
+// this tick. Returns i if even the shortest rung is too long for it (the pass names the first).
 template <class T, class N = float>
 struct CloseStepKernel {
     ParticleView<T, N> p;
@@ -57,8 +58,9 @@ struct CloseStepKernel {
     double block_dt;     // the length of rung 0 from here on
     std::int64_t tick;
     bool first; // no step has begun yet: nothing to close
+    using Reduction = FirstIndexWhere;
 
-    EXASPH_HD double operator()(std::uint32_t i) const {
+    EXASPH_HD FoundIndex operator()(std::uint32_t i) const {
         const int old = int(p[Field::rung][i]);
         if (!first) {
             const T hs = T(double(rung_ticks(old)) * half_tick_dt);
@@ -68,9 +70,9 @@ struct CloseStepKernel {
             p[Field::u][i] = p[Field::uh][i] + p[Field::du][i] * hs;
         }
         const int r = rung_for_step(double(p[Field::dtc][i]), block_dt);
-        if (r > kMaxRung) return double(i);
+        if (r > kMaxRung) return FoundIndex::at(i);
         p[Field::rung][i] = T(first ? r : aligned_rung(tick, r));
-        return 1e300;
+        return FoundIndex::none();
     }
 };
 
@@ -95,7 +97,7 @@ struct RungNeedKernel {
 // its rung: its step ends now, on the first rung at or above the bound that this tick
 // synchronises, and a new one begins (v and u were predicted to this tick; Durier & Dalla
 // Vecchia 2012 end the step early the same way). Returns the tick at which the particle is
-// next active.
+// next active (the pass takes the earliest).
 template <class T, class N = float>
 struct OpenStepKernel {
     ParticleView<T, N> p;
@@ -103,8 +105,9 @@ struct OpenStepKernel {
     const int* need;     // nullptr: no limiter
     double half_tick_dt; // of the steps that begin here
     std::int64_t tick;
+    using Reduction = MinOf<std::int64_t>;
 
-    EXASPH_HD double operator()(std::uint32_t i) const {
+    EXASPH_HD std::int64_t operator()(std::uint32_t i) const {
         int r = int(p[Field::rung][i]);
         const int bound = need ? need[i] : -1;
         if (active[i] || bound > r) {
@@ -118,7 +121,7 @@ struct OpenStepKernel {
             p[Field::dtc][i] = T(2) * hs; // the step taken (the AV switch evolves over it)
         }
         const std::int64_t s = rung_ticks(r);
-        return double((tick / s + 1) * s);
+        return (tick / s + 1) * s;
     }
 };
 
@@ -154,13 +157,13 @@ struct DriftKernel {
     }
 };
 
-// s * v[i]: the extremes of a per-particle value as minima (the blocks' own step limits).
-template <class T>
-struct ScaledValueKernel {
+// v[i] under reduction R (MinOf or MaxOf: the extremes of the blocks' own step limits).
+template <class T, class R>
+struct ValueKernel {
     const T* v;
-    double s;
+    using Reduction = R;
 
-    EXASPH_HD double operator()(std::uint32_t i) const { return s * double(v[i]); }
+    EXASPH_HD double operator()(std::uint32_t i) const { return double(v[i]); }
 };
 
 // Stores a neighbour kernel's result per particle instead of reducing it (block time steps: each
@@ -169,6 +172,7 @@ template <class K, class T>
 struct StoreResultKernel {
     K k;
     T* out;
+    using Reduction = MinOf<double>;
 
     // Without `out` (global steps) the result is reduced as usual.
     template <class Span>
@@ -176,7 +180,7 @@ struct StoreResultKernel {
         const double r = double(k(i, nb));
         if (!out) return r;
         out[i] = T(r);
-        return 1e300;
+        return Reduction::identity();
     }
 };
 

@@ -29,8 +29,8 @@ void limit_own_steps(ParticleSet<T>& ps, const ParticleRange& idx, double first_
 template <class L = DefaultLauncher, class T>
 std::pair<double, double> own_step_extremes(const ParticleSet<T>& ps, std::size_t n) {
     const T* dt = ps.data(Field::dtc);
-    const double least = L::reduce_min(n, ScaledValueKernel<T>{dt, 1.0});
-    const double most = -L::reduce_min(n, ScaledValueKernel<T>{dt, -1.0});
+    const double least = L::reduce(n, ValueKernel<T, MinOf<double>>{dt});
+    const double most = L::reduce(n, ValueKernel<T, MaxOf<double>>{dt});
     return {least, most};
 }
 
@@ -38,14 +38,14 @@ std::pair<double, double> own_step_extremes(const ParticleSet<T>& ps, std::size_
 template <class L = DefaultLauncher, class T>
 void close_steps(ParticleSet<T>& ps, const ParticleRange& idx, double half_tick_dt, double block_dt,
                  std::int64_t tick, bool first) {
-    const double bad = with_view(ps, [&](auto p) {
+    const FoundIndex bad = with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
-        return L::reduce_min_of(idx.idx, idx.n,
-                                CloseStepKernel<T, N>{p, half_tick_dt, block_dt, tick, first});
+        return L::reduce_of(idx.idx, idx.n,
+                            CloseStepKernel<T, N>{p, half_tick_dt, block_dt, tick, first});
     });
-    if (bad < 1e300)
-        throw Error("block time steps: particle id " + std::to_string(ps.id[std::size_t(bad)]) +
-                    " needs a step of " + std::to_string(double(ps[Field::dtc][std::size_t(bad)])) +
+    if (bad.found())
+        throw Error("block time steps: particle id " + std::to_string(ps.id[bad.index]) +
+                    " needs a step of " + std::to_string(double(ps[Field::dtc][bad.index])) +
                     ", below the shortest rung (dt_max / 2^" + std::to_string(kMaxRung) + ")");
 }
 
@@ -61,10 +61,10 @@ void add_rung_needs(ParticleSet<T>& ps, const Lists& nl, int* need) {
 template <class L = DefaultLauncher, class T>
 std::int64_t open_steps(ParticleSet<T>& ps, std::size_t n, const std::uint8_t* active,
                         const int* need, double half_tick_dt, std::int64_t tick) {
-    return std::int64_t(with_view(ps, [&](auto p) {
+    return with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
-        return L::reduce_min(n, OpenStepKernel<T, N>{p, active, need, half_tick_dt, tick});
-    }));
+        return L::reduce(n, OpenStepKernel<T, N>{p, active, need, half_tick_dt, tick});
+    });
 }
 
 template <class L = DefaultLauncher, class T>

@@ -5,12 +5,12 @@
 #include "exasph/sph/launch.hpp"
 #include "exasph/tree/device_lists.hpp"
 
-// The CUDA backend's launcher: one CUDA thread per particle, the kernels of sph/ called as they
-// are. Particle fields and kernel tables are in managed memory (util/cuda_runtime.hpp), so the
-// views the passes build hold pointers the device reads; each call ends synchronised, so host
-// code after it sees the results. Declared here, defined in src/cuda/launch.cuh and
-// instantiated for every kernel of the passes in src/cuda/passes.cu (nvcc); only a build with
-// EXASPH_CUDA links it.
+// The CUDA backend's launcher (the interface of sph/launch.hpp): one CUDA thread per particle,
+// the kernels of sph/ called as they are. Particle fields and kernel tables are in managed memory
+// (util/cuda_runtime.hpp), so the views the passes build hold pointers the device reads; each call
+// ends synchronised, so host code after it sees the results. Declared here, defined in
+// src/cuda/launch.cuh and instantiated for every kernel of the passes in src/cuda/passes.cu (nvcc);
+// only a build with EXASPH_CUDA links it.
 namespace exasph {
 
 struct CudaLauncher {
@@ -22,15 +22,15 @@ struct CudaLauncher {
     template <class Kernel>
     static void for_each(std::size_t n, const Kernel& k);
     template <class Kernel>
-    static double reduce_min(std::size_t n, const Kernel& k);
+    static ResultOf<Kernel> reduce(std::size_t n, const Kernel& k);
     // The particles idx[0, n) (block time steps' active ones): idx must be device-readable
     // (FieldArray, managed memory).
     template <class Kernel>
     static void for_each_of(const std::uint32_t* idx, std::size_t n, const Kernel& k);
     template <class Kernel>
-    static double reduce_min_of(const std::uint32_t* idx, std::size_t n, const Kernel& k);
+    static ResultOf<Kernel> reduce_of(const std::uint32_t* idx, std::size_t n, const Kernel& k);
     template <class T, class Kernel>
-    static double for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k);
+    static ResultOf<Kernel> for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k);
 };
 
 template <>

@@ -7,6 +7,7 @@
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/sph/iad_matrix.hpp"
 #include "exasph/sph/iad_simd.hpp"
+#include "exasph/sph/reduction.hpp"
 #include "exasph/sph/tensile_stress.hpp"
 #include "exasph/tree/neighbour_span.hpp"
 #include "exasph/util/box.hpp"
@@ -137,8 +138,8 @@ EXASPH_HD IadResult<T> iad_kern(std::uint32_t a, Span nb, const ParticleView<T, 
 
 // The IAD pass of one particle: C_a stored in N (is_narrow: float, or T with --double-precision),
 // `with_gradient` also the strain rate (Field::e11..e33, in N) for the reconstructed artificial
-// viscosity. Returns i where tau_a is singular, else +infinity (the launcher's minimum names the
-// first such particle).
+// viscosity. Returns i where tau_a is singular (the launcher's reduction names the first such
+// particle).
 template <class T, class N = float>
 struct IadKernel {
     ParticleView<T, N> p;
@@ -150,9 +151,10 @@ struct IadKernel {
     // exponent of f_ab (tensile_stress.hpp); 0: none.
     T stress_inv_w0 = T(0);
     int stress_exponent = 4;
+    using Reduction = FirstIndexWhere;
 
     template <class Span>
-    EXASPH_HD double operator()(std::uint32_t i, Span nb) const {
+    EXASPH_HD FoundIndex operator()(std::uint32_t i, Span nb) const {
         VelocityGradient<T> g;
         auto r = iad_kern(i, nb, p, box, k, with_gradient ? &g : nullptr, own_k);
         if (stress_inv_w0 > T(0)) {
@@ -170,7 +172,7 @@ struct IadKernel {
         p.narrow(Field::c22)[i] = N(r.c22);
         p.narrow(Field::c23)[i] = N(r.c23);
         p.narrow(Field::c33)[i] = N(r.c33);
-        return r.singular ? double(i) : 1e300;
+        return r.singular ? FoundIndex::at(i) : FoundIndex::none();
     }
 };
 

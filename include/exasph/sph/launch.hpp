@@ -8,18 +8,55 @@
 #include "exasph/tree/neighbour_groups.hpp"
 #include "exasph/tree/neighbour_lists.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "exasph/sph/reduction.hpp"
+
 // Launchers: how a per-particle kernel runs over the particles. A kernel is a functor with an
 // EXASPH_HD call operator, k(i) for particle-wise kernels or k(i, neighbours of i) for
-// neighbour passes, that may return a number; a launcher calls it for every particle and, where
-// asked, returns the minimum of the results. The passes (sph/passes.hpp) take the launcher as a
-// template parameter, so that the same kernels run on another backend by adding a launcher
-// here, not by touching the kernels.
+// neighbour passes, that may return a value reduced as its member type Reduction says
+// (sph/reduction.hpp: MinOf, MaxOf, SumOf, FirstIndexWhere). Every launcher provides:
+//   for_each(n, k), for_each_of(idx, n, k)       k(i) for i < n, or for i in idx[0, n)
+//   reduce(n, k), reduce_of(idx, n, k)           the same, returning the kernel's reduction
+//   for_each_neighbourhood(lists, k)             k(i, neighbours) for every list, returning the
+//                                                reduction when the kernel has one
+// Requires: a kernel writes only its own particle's slots (calls run in any order, in parallel).
+// Guarantees: every call has returned (and its writes are visible to the host) when the
+// launcher returns; min, max and first-index results do not depend on the order of the calls.
+// The passes (sph/passes.hpp) take the launcher as a template parameter, so that the same
+// kernels run on another backend by adding a launcher here, not by touching the kernels.
 namespace exasph {
 
 // openmp: the CPU path (compact lists, OmpLauncher); gpu_host: the GPU path's lists and search
 // run by OpenMP on the host (GpuHostLauncher: tests the GPU path without a GPU); cuda: on the
 // device (src/cuda/).
 enum class Backend { openmp, gpu_host, cuda };
+
+// Reduction R over this rank's threads: each thread runs part() (a worksharing loop that
+// returns its share) and the shares are combined in thread order.
+template <class R, class Part>
+typename R::value_type reduce_over_threads(const Part& part) {
+    using V = typename R::value_type;
+#ifdef _OPENMP
+    constexpr int kMostThreads = 1024;
+    V share[kMostThreads];
+    int threads = 1;
+#pragma omp parallel
+    {
+#pragma omp single
+        threads = omp_get_num_threads();
+        const V mine = part(); // the worksharing loop's barrier follows the single's
+        if (omp_get_thread_num() < kMostThreads) share[omp_get_thread_num()] = mine;
+    }
+    V total = R::identity();
+    for (int t = 0; t < threads && t < kMostThreads; ++t) total = R::combine(total, share[t]);
+    return total;
+#else
+    return part();
+#endif
+}
 
 // Particle-wise kernels on the OpenMP threads of this rank (static schedule).
 struct OmpParticleLoops {
@@ -39,29 +76,60 @@ struct OmpParticleLoops {
     }
 
     template <class Kernel>
-    static double reduce_min_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
-        const auto nn = static_cast<std::int64_t>(n);
-        double least = std::numeric_limits<double>::infinity();
-#pragma omp parallel for schedule(static) reduction(min : least)
-        for (std::int64_t s = 0; s < nn; ++s) least = std::min(least, double(k(idx[s])));
-        return least;
+    static ResultOf<Kernel> reduce_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
+        return reduce_slots(n, k, [idx](std::int64_t s) { return idx[s]; });
     }
 
     template <class Kernel>
-    static double reduce_min(std::size_t n, const Kernel& k) {
+    static ResultOf<Kernel> reduce(std::size_t n, const Kernel& k) {
+        return reduce_slots(n, k, [](std::int64_t s) { return std::uint32_t(s); });
+    }
+
+  private:
+    // The kernel's reduction over particles particle(s), s in [0, n).
+    template <class Kernel, class Particle>
+    static ResultOf<Kernel> reduce_slots(std::size_t n, const Kernel& k, Particle particle) {
+        using R = ReductionOf<Kernel>;
+        static_assert(kReduces<Kernel>, "a reduction needs a kernel with a Reduction");
         const auto nn = static_cast<std::int64_t>(n);
-        double least = std::numeric_limits<double>::infinity();
-#pragma omp parallel for schedule(static) reduction(min : least)
-        for (std::int64_t i = 0; i < nn; ++i) least = std::min(least, double(k(std::uint32_t(i))));
-        return least;
+        return reduce_over_threads<R>([&] {
+            auto part = R::identity();
+#pragma omp for schedule(static)
+            for (std::int64_t s = 0; s < nn; ++s) part = R::combine(part, k(particle(s)));
+            return part;
+        });
     }
 };
 
-// Whether a neighbour kernel returns a number for the launcher to reduce (kernels are templates
-// on the span: ContiguousSpan from the CPU lists, NeighbourSpan from the interleaved ones).
+// The result of a neighbour pass over per-thread parts: the kernel's reduction, or nothing.
+template <class Kernel, class Part>
+ResultOf<Kernel> neighbour_pass(const Part& part) {
+    if constexpr (kReduces<Kernel>) {
+        return reduce_over_threads<ReductionOf<Kernel>>(part);
+    } else {
+#pragma omp parallel
+        part();
+    }
+}
+
+// Calls k(i, span) and folds its result (if any) into `part`.
+template <class Kernel, class Span>
+void visit_neighbourhood(const Kernel& k, std::uint32_t i, Span span,
+                         std::conditional_t<kReduces<Kernel>, ResultOf<Kernel>, bool>& part) {
+    if constexpr (kReduces<Kernel>)
+        part = ReductionOf<Kernel>::combine(part, k(i, span));
+    else
+        k(i, span);
+}
+
+// The identity of the kernel's reduction (false for a kernel without one: a placeholder).
 template <class Kernel>
-inline constexpr bool kReduces =
-    !std::is_void_v<std::invoke_result_t<const Kernel&, std::uint32_t, NeighbourSpan>>;
+constexpr auto reduction_start() {
+    if constexpr (kReduces<Kernel>)
+        return ReductionOf<Kernel>::identity();
+    else
+        return false;
+}
 
 // OpenMP threads of this rank: static schedule over particles, dynamic over leaf groups.
 struct OmpLauncher : OmpParticleLoops {
@@ -71,42 +139,37 @@ struct OmpLauncher : OmpParticleLoops {
     using Lists = NeighbourLists<T>;
 
     // Every particle with a list, in parallel over the leaf groups (each thread expands its
-    // groups' lists into its own buffer). Returns the minimum of the kernel's results if it
-    // returns a number (else +infinity).
+    // groups' lists into its own buffer).
     template <class T, class Kernel>
-    static double for_each_neighbourhood(const NeighbourLists<T>& nl, const Kernel& k) {
+    static ResultOf<Kernel> for_each_neighbourhood(const NeighbourLists<T>& nl, const Kernel& k) {
         return for_groups(nl, nullptr, nl.num_groups(), k);
     }
     // Only the listed groups (a pass split around a halo exchange in flight).
     template <class T, class Kernel>
-    static double for_each_neighbourhood(const NeighbourGroups<T>& part, const Kernel& k) {
+    static ResultOf<Kernel> for_each_neighbourhood(const NeighbourGroups<T>& part,
+                                                   const Kernel& k) {
         return for_groups(*part.lists, part.groups.data(), part.groups.size(), k);
     }
 
   private:
     // Groups which[0, n) of the lists (which == nullptr: groups 0 .. n - 1).
     template <class T, class Kernel>
-    static double for_groups(const NeighbourLists<T>& nl, const std::uint32_t* which, std::size_t n,
-                             const Kernel& k) {
+    static ResultOf<Kernel> for_groups(const NeighbourLists<T>& nl, const std::uint32_t* which,
+                                       std::size_t n, const Kernel& k) {
         const auto groups = static_cast<std::int64_t>(n);
-        double least = std::numeric_limits<double>::infinity();
-#pragma omp parallel reduction(min : least)
-        {
+        return neighbour_pass<Kernel>([&] {
+            auto part = reduction_start<Kernel>();
             typename NeighbourLists<T>::Decoder dec(nl);
 #pragma omp for schedule(dynamic, 8)
             for (std::int64_t w = 0; w < groups; ++w) {
                 const std::size_t g = which ? which[w] : std::size_t(w);
                 dec.start(g);
                 const auto end = nl.group_end(g);
-                for (std::uint32_t s = nl.group_begin(g); s < end; ++s) {
-                    if constexpr (kReduces<Kernel>)
-                        least = std::min(least, double(k(nl.member(s), dec.next())));
-                    else
-                        k(nl.member(s), dec.next());
-                }
+                for (std::uint32_t s = nl.group_begin(g); s < end; ++s)
+                    visit_neighbourhood(k, nl.member(s), dec.next(), part);
             }
-        }
-        return least;
+            return part;
+        });
     }
 };
 
@@ -120,18 +183,17 @@ struct GpuHostLauncher : OmpParticleLoops {
     using Lists = BatchLists<T>;
 
     template <class T, class Kernel>
-    static double for_each_neighbourhood(const BatchLists<T>& nl, const Kernel& k) {
+    static ResultOf<Kernel> for_each_neighbourhood(const BatchLists<T>& nl, const Kernel& k) {
         const auto n = static_cast<std::int64_t>(nl.size());
-        double least = std::numeric_limits<double>::infinity();
-#pragma omp parallel for schedule(dynamic, kBatch) reduction(min : least)
-        for (std::int64_t s = 0; s < n; ++s) {
-            const auto slot = std::uint32_t(s);
-            if constexpr (kReduces<Kernel>)
-                least = std::min(least, double(k(nl.member(slot), nl.span(slot))));
-            else
-                k(nl.member(slot), nl.span(slot));
-        }
-        return least;
+        return neighbour_pass<Kernel>([&] {
+            auto part = reduction_start<Kernel>();
+#pragma omp for schedule(dynamic, kBatch)
+            for (std::int64_t s = 0; s < n; ++s) {
+                const auto slot = std::uint32_t(s);
+                visit_neighbourhood(k, nl.member(slot), nl.span(slot), part);
+            }
+            return part;
+        });
     }
 };
 

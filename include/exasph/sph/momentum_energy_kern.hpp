@@ -10,6 +10,7 @@
 #include "exasph/sph/momentum_energy_pair.hpp"
 #include "exasph/sph/momentum_energy_simd.hpp"
 #include "exasph/sph/pair_dissipation.hpp"
+#include "exasph/sph/reduction.hpp"
 #include "exasph/sph/tensile_stress.hpp"
 #include "exasph/sph/timestep.hpp"
 #include "exasph/tree/neighbour_span.hpp"
@@ -116,6 +117,7 @@ struct MomentumEnergyKernel {
     KernelView<T> k;
     Dissipation<T> diss;
     T courant;
+    using Reduction = MinOf<double>; // the Courant step of the pass
 
     template <class Span>
     EXASPH_HD T operator()(std::uint32_t i, Span nb) const {

@@ -67,13 +67,13 @@ void compute_iad(ParticleSet<T>& ps, const Lists& nl, const Box<T>& box, const K
     if (with_gradient) ps.enable(kHaloGrad);
     if (stress_inv_w0 > T(0))
         for (int c = 0; c < 9; ++c) ps.enable(stress_matrix_field(c));
-    const double first = with_view(ps, [&](auto p) {
+    const FoundIndex singular = with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
         return L::for_each_neighbourhood(
             nl, IadKernel<T, N>{p, box, k, with_gradient, own_k, stress_inv_w0, stress_exponent});
     });
-    if (first < 1e300) { // IadKernel returns the index of a singular particle, else 1e300
-        const auto i = std::uint32_t(first);
+    if (singular.found()) {
+        const std::uint32_t i = singular.index;
         const bool with_stress = stress_inv_w0 > T(0);
         throw Error(std::string(with_stress ? "IAD matrix tau or the artificial stress's tau'"
                                             : "IAD matrix tau") +
@@ -208,8 +208,7 @@ void settle_volume_weights(ParticleSet<T>& ps, const Lists& nl, const Box<T>& bo
 template <class L = DefaultLauncher, class T>
 double acceleration_time_step_min(ParticleSet<T>& ps, std::size_t n, double eps) {
     return with_view(ps, [&](auto p) {
-        return L::reduce_min(n,
-                             AccelerationStepKernel<T, typename decltype(p)::narrow_type>{p, eps});
+        return L::reduce(n, AccelerationStepKernel<T, typename decltype(p)::narrow_type>{p, eps});
     });
 }
 
@@ -219,9 +218,9 @@ template <class L = DefaultLauncher, class T>
 double skin_use_max(ParticleSet<T>& ps, std::size_t n, float* used, double dt, double dt_m1,
                     double ng0) {
     if (n == 0) return 0.0;
-    return -with_view(ps, [&](auto p) {
+    return with_view(ps, [&](auto p) {
         using N = typename decltype(p)::narrow_type;
-        return L::reduce_min(n, SkinUseKernel<T, N>{p, used, T(dt), T(dt_m1), T(ng0)});
+        return L::reduce(n, SkinUseKernel<T, N>{p, used, T(dt), T(dt_m1), T(ng0)});
     });
 }
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "exasph/particles/particle_view.hpp"
+#include "exasph/sph/reduction.hpp"
 #include "exasph/sph/smoothing_length.hpp"
 
 namespace exasph {
@@ -14,12 +15,13 @@ namespace exasph {
 // The coming step is bounded by dt (at least the step the collective will choose):
 //   physics.md §7: x_{n+1} - x_n = dt (x_n - x_{n-1}) / dt_{n-1} + a_n dt (dt + dt_{n-1}) / 2,
 // whose length is at most the sum of its terms' lengths, and physics.md §2's h_{n+1} from this
-// step's neighbour count. Returns minus the use (launchers reduce with a minimum).
+// step's neighbour count. Returns the use (the pass takes the largest).
 template <class T, class N = float>
 struct SkinUseKernel {
     ParticleView<T, N> p;
     float* used; // per owned particle, since the last sync
     T dt, dt_m1, ng0;
+    using Reduction = MaxOf<double>;
 
     EXASPH_HD double operator()(std::uint32_t i) const {
         const Field pos[3] = {Field::x, Field::y, Field::z};
@@ -38,7 +40,7 @@ struct SkinUseKernel {
         // Rounded up: the sum is kept in float.
         const float u = used[i] + float(move + grow) * (1.0f + 1e-6f);
         used[i] = u;
-        return -double(u);
+        return double(u);
     }
 };
 

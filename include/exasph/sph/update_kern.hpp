@@ -5,6 +5,7 @@
 #include "exasph/particles/particle_view.hpp"
 #include "exasph/sph/av_switch.hpp"
 #include "exasph/sph/integrator.hpp"
+#include "exasph/sph/reduction.hpp"
 #include "exasph/sph/smoothing_length.hpp"
 #include "exasph/sph/timestep.hpp"
 #include "exasph/util/box.hpp"
@@ -109,6 +110,7 @@ template <class T, class N = float>
 struct AccelerationStepKernel {
     ParticleView<T, N> p;
     double eps;
+    using Reduction = MinOf<double>;
 
     EXASPH_HD double operator()(std::uint32_t i) const {
         return acceleration_time_step(double(p[Field::h][i]), double(p[Field::ax][i]),

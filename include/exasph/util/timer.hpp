@@ -2,7 +2,6 @@
 #include <array>
 #include <chrono>
 #include <cstddef>
-#include <functional>
 
 namespace exasph {
 
@@ -17,21 +16,13 @@ inline double wall_seconds() {
 template <std::size_t NumPhases>
 class PhaseTimer {
   public:
-    // The observer usually refers to the timer's owner: neither is copied or moved.
-    PhaseTimer() = default;
-    PhaseTimer(const PhaseTimer&) = delete;
-    PhaseTimer& operator=(const PhaseTimer&) = delete;
     void start() { t0_ = wall_seconds(); }
-    // Charges the time since the last start()/stop() to `phase` and restarts the clock; then
-    // tells the observer (if any) that the phase ended.
+    // Charges the time since the last start()/stop() to `phase` and restarts the clock.
     void stop(std::size_t phase) {
         double t = wall_seconds();
         step_[phase] += t - t0_;
         t0_ = t;
-        if (observer_) observer_(phase);
     }
-    // Called with each phase as it ends (the fault injection of sim/fault.hpp uses it).
-    void observe(std::function<void(std::size_t)> f) { observer_ = std::move(f); }
     // A new step: its phase times start at zero, and so does the clock.
     void begin_step() {
         step_.fill(0.0);
@@ -50,7 +41,6 @@ class PhaseTimer {
 
   private:
     double t0_ = 0.0;
-    std::function<void(std::size_t)> observer_;
     std::array<double, NumPhases> step_{};
     std::array<double, NumPhases> total_{};
 };
