@@ -121,6 +121,7 @@ inline void finish(const char* what) {
 } // namespace cuda_detail
 
 template <class Kernel>
+requires kListed<Kernel, CudaLauncher::Listed::each>
 void CudaLauncher::for_each(std::size_t n, const Kernel& k) {
     if (n == 0) return;
     cuda_detail::particles<<<cuda_detail::blocks_for(n), cuda_detail::kThreads>>>(k,
@@ -129,7 +130,8 @@ void CudaLauncher::for_each(std::size_t n, const Kernel& k) {
 }
 
 template <class Kernel>
-ResultOf<Kernel> CudaLauncher::reduce(std::size_t n, const Kernel& k) {
+requires kListed<Kernel, CudaLauncher::Listed::reduce> ResultOf<Kernel>
+CudaLauncher::reduce(std::size_t n, const Kernel& k) {
     using R = ReductionOf<Kernel>;
     if (n == 0) return R::identity();
     const unsigned blocks = cuda_detail::blocks_for(n);
@@ -141,6 +143,7 @@ ResultOf<Kernel> CudaLauncher::reduce(std::size_t n, const Kernel& k) {
 }
 
 template <class Kernel>
+requires kListed<Kernel, CudaLauncher::Listed::each_of>
 void CudaLauncher::for_each_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
     if (n == 0) return;
     cuda_detail::particles_of<<<cuda_detail::blocks_for(n), cuda_detail::kThreads>>>(
@@ -149,7 +152,8 @@ void CudaLauncher::for_each_of(const std::uint32_t* idx, std::size_t n, const Ke
 }
 
 template <class Kernel>
-ResultOf<Kernel> CudaLauncher::reduce_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
+requires kListed<Kernel, CudaLauncher::Listed::reduce_of> ResultOf<Kernel>
+CudaLauncher::reduce_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
     using R = ReductionOf<Kernel>;
     if (n == 0) return R::identity();
     const unsigned blocks = cuda_detail::blocks_for(n);
@@ -161,7 +165,8 @@ ResultOf<Kernel> CudaLauncher::reduce_of(const std::uint32_t* idx, std::size_t n
 }
 
 template <class T, class Kernel>
-ResultOf<Kernel> CudaLauncher::for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k) {
+requires kListed<Kernel, CudaLauncher::Listed::neighbours> ResultOf<Kernel>
+CudaLauncher::for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k) {
     const std::size_t n = nl.size();
     const unsigned blocks = cuda_detail::blocks_for(n);
     if constexpr (kReduces<Kernel>) {

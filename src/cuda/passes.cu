@@ -1,78 +1,109 @@
-// The CUDA launcher instantiated for every kernel that the passes of sph/passes.hpp hand it, in
-// the working precision double and both storages of the derived fields (float, double): the
-// host code (Simulation<double, CudaLauncher>) links against these. A pass that gains a kernel
-// adds its line here; the linker names any that is missing.
-#include "exasph/sph/block_kern.hpp"
-#include "exasph/sph/density_kern.hpp"
-#include "exasph/sph/iad_kern.hpp"
-#include "exasph/sph/momentum_energy_kern.hpp"
-#include "exasph/sph/skin_kern.hpp"
-#include "exasph/sph/softening_correction_kern.hpp"
-#include "exasph/sph/stir_kern.hpp"
-#include "exasph/sph/update_kern.hpp"
+// The CUDA launcher instantiated for every kernel of sph/pass_kernels.hpp (working precision
+// double, both storages of the derived fields): the host code (Simulation<double,
+// CudaLauncher>) links against these. Nothing here names a kernel: adding a pass kernel is one
+// entry in that list, and run_every_pass() below does not compile if a pass launches a kernel
+// that the list lacks.
+#include <cstddef>
+#include <cstdint>
+#include <tuple>
+
+#include "exasph/sph/block_passes.hpp"
+#include "exasph/sph/pass_kernels.hpp"
+#include "exasph/sph/passes.hpp"
 #include "launch.cuh"
 
 namespace exasph {
+namespace cuda_detail {
 
-#define EXASPH_CUDA_FOR_EACH(...)                                                                  \
-    template void CudaLauncher::for_each<__VA_ARGS__>(std::size_t, const __VA_ARGS__&);
-#define EXASPH_CUDA_REDUCE(...)                                                                    \
-    template ResultOf<__VA_ARGS__> CudaLauncher::reduce<__VA_ARGS__>(std::size_t,                  \
-                                                                     const __VA_ARGS__&);
-#define EXASPH_CUDA_NEIGHBOURS(...)                                                                \
-    template ResultOf<__VA_ARGS__> CudaLauncher::for_each_neighbourhood<double, __VA_ARGS__>(      \
-        const DeviceLists<double>&, const __VA_ARGS__&);
-#define EXASPH_CUDA_FOR_EACH_OF(...)                                                               \
-    template void CudaLauncher::for_each_of<__VA_ARGS__>(const std::uint32_t*, std::size_t,        \
-                                                         const __VA_ARGS__&);
-#define EXASPH_CUDA_REDUCE_OF(...)                                                                 \
-    template ResultOf<__VA_ARGS__> CudaLauncher::reduce_of<__VA_ARGS__>(                           \
-        const std::uint32_t*, std::size_t, const __VA_ARGS__&);
-// A particle-wise pass that runs over all particles or the active ones (ParticleRange).
-#define EXASPH_CUDA_FOR_EACH_IN(...)                                                               \
-    EXASPH_CUDA_FOR_EACH(__VA_ARGS__) EXASPH_CUDA_FOR_EACH_OF(__VA_ARGS__)
+// The launcher's function for every kernel of a list, by address in a static member of an
+// explicitly instantiated class: each function is then compiled and emitted here.
+template <class List>
+struct EachInstances;
+template <class... K>
+struct EachInstances<KernelList<K...>> {
+    static const std::tuple<void (*)(std::size_t, const K&)...> table;
+};
+template <class... K>
+const std::tuple<void (*)(std::size_t, const K&)...> EachInstances<KernelList<K...>>::table{
+    &CudaLauncher::for_each<K>...};
 
-// The momentum-energy kernel as Simulation hands it over: in StoreResultKernel, which keeps each
-// particle's own Courant limit with block time steps (and reduces it with global steps).
-#define EXASPH_CUDA_MOMENTUM_AS(...)                                                               \
-    EXASPH_CUDA_NEIGHBOURS(StoreResultKernel<MomentumEnergyKernel<__VA_ARGS__>, double>)
-#define EXASPH_CUDA_MOMENTUM_TERMS(TERMS, N)                                                       \
-    EXASPH_CUDA_MOMENTUM_AS(double, PairTerms::TERMS, false, false, N)                             \
-    EXASPH_CUDA_MOMENTUM_AS(double, PairTerms::TERMS, false, true, N)                              \
-    EXASPH_CUDA_MOMENTUM_AS(double, PairTerms::TERMS, true, false, N)                              \
-    EXASPH_CUDA_MOMENTUM_AS(double, PairTerms::TERMS, true, true, N)
-#define EXASPH_CUDA_MOMENTUM(N)                                                                    \
-    EXASPH_CUDA_MOMENTUM_TERMS(plain, N)                                                           \
-    EXASPH_CUDA_MOMENTUM_TERMS(limited, N)                                                         \
-    EXASPH_CUDA_MOMENTUM_TERMS(any, N)
+template <class List>
+struct EachOfInstances;
+template <class... K>
+struct EachOfInstances<KernelList<K...>> {
+    static const std::tuple<void (*)(const std::uint32_t*, std::size_t, const K&)...> table;
+};
+template <class... K>
+const std::tuple<void (*)(const std::uint32_t*, std::size_t, const K&)...>
+    EachOfInstances<KernelList<K...>>::table{&CudaLauncher::for_each_of<K>...};
 
-#define EXASPH_CUDA_PASSES(N)                                                                      \
-    EXASPH_CUDA_NEIGHBOURS(DensityEosKernel<double, N>)                                            \
-    EXASPH_CUDA_NEIGHBOURS(IadKernel<double, N>)                                                   \
-    EXASPH_CUDA_NEIGHBOURS(SofteningZetaKernel<double, N>)                                         \
-    EXASPH_CUDA_NEIGHBOURS(SofteningForceKernel<double, N>)                                        \
-    EXASPH_CUDA_MOMENTUM(N)                                                                        \
-    EXASPH_CUDA_FOR_EACH(PressAxisKernel<double, N>)                                               \
-    EXASPH_CUDA_FOR_EACH(EnergyUpdateKernel<double, N>)                                            \
-    EXASPH_CUDA_FOR_EACH_IN(SmoothingLengthKernel<double, N>)                                      \
-    EXASPH_CUDA_FOR_EACH_IN(ViscosityKernel<double, N>)                                            \
-    EXASPH_CUDA_FOR_EACH_IN(VolumeWeightKernel<double, N>)                                         \
-    EXASPH_CUDA_FOR_EACH(StirKernel<double, N>)                                                    \
-    EXASPH_CUDA_REDUCE(AccelerationStepKernel<double, N>)                                          \
-    EXASPH_CUDA_REDUCE(SkinUseKernel<double, N>)                                                   \
-    EXASPH_CUDA_BLOCK_STEPS(N)
+template <class List>
+struct ReduceInstances;
+template <class... K>
+struct ReduceInstances<KernelList<K...>> {
+    static const std::tuple<ResultOf<K> (*)(std::size_t, const K&)...> table;
+};
+template <class... K>
+const std::tuple<ResultOf<K> (*)(std::size_t, const K&)...>
+    ReduceInstances<KernelList<K...>>::table{&CudaLauncher::reduce<K>...};
 
-// Block time steps (sph/block_passes.hpp).
-#define EXASPH_CUDA_BLOCK_STEPS(N)                                                                 \
-    EXASPH_CUDA_FOR_EACH_OF(OwnStepLimitKernel<double, N>)                                         \
-    EXASPH_CUDA_REDUCE_OF(CloseStepKernel<double, N>)                                              \
-    EXASPH_CUDA_NEIGHBOURS(RungNeedKernel<double, N>)                                              \
-    EXASPH_CUDA_REDUCE(OpenStepKernel<double, N>)                                                  \
-    EXASPH_CUDA_FOR_EACH(DriftKernel<double, N>)
+template <class List>
+struct ReduceOfInstances;
+template <class... K>
+struct ReduceOfInstances<KernelList<K...>> {
+    static const std::tuple<ResultOf<K> (*)(const std::uint32_t*, std::size_t, const K&)...> table;
+};
+template <class... K>
+const std::tuple<ResultOf<K> (*)(const std::uint32_t*, std::size_t, const K&)...>
+    ReduceOfInstances<KernelList<K...>>::table{&CudaLauncher::reduce_of<K>...};
 
-EXASPH_CUDA_PASSES(float)
-EXASPH_CUDA_PASSES(double)
-EXASPH_CUDA_REDUCE(ValueKernel<double, MinOf<double>>)
-EXASPH_CUDA_REDUCE(ValueKernel<double, MaxOf<double>>)
+template <class List>
+struct NeighbourInstances;
+template <class... K>
+struct NeighbourInstances<KernelList<K...>> {
+    static const std::tuple<ResultOf<K> (*)(const DeviceLists<double>&, const K&)...> table;
+};
+template <class... K>
+const std::tuple<ResultOf<K> (*)(const DeviceLists<double>&, const K&)...>
+    NeighbourInstances<KernelList<K...>>::table{
+        &CudaLauncher::for_each_neighbourhood<double, K>...};
 
+using Listed = CudaLauncher::Listed;
+template struct EachInstances<Listed::each>;
+template struct EachOfInstances<Listed::each_of>;
+template struct ReduceInstances<Listed::reduce>;
+template struct ReduceOfInstances<Listed::reduce_of>;
+template struct NeighbourInstances<Listed::neighbours>;
+
+// Every pass of sph/passes.hpp and sph/block_passes.hpp once on the CUDA launcher, as the step
+// calls it (never run): a pass whose kernel is not in the list fails CudaLauncher's constraint
+// here, in nvcc's compile, not only at link time.
+[[maybe_unused]] void run_every_pass(ParticleSet<double>& ps, const DeviceLists<double>& nl) {
+    using L = CudaLauncher;
+    const Box<double> box{};
+    const KernelView<double> k{};
+    const ParticleRange all(ps.size());
+    compute_density<L>(ps, nl, box, k);
+    compute_iad<L>(ps, nl, box, k);
+    compute_momentum_energy<L>(ps, nl, box, k, Dissipation<double>{}, 0.2,
+                               store_results_in<double>(nullptr));
+    compute_softening_zeta<L>(ps, nl, SofteningView<double>{}, 1.0);
+    add_softening_correction<L>(ps, nl, k);
+    update_state<L>(ps, ps.size(), box, 1.0, 1.0);
+    update_smoothing_lengths<L>(ps, all, 100.0);
+    update_viscosity<L>(ps, all, 1.0, 0.05, 1.0);
+    add_stirring<L>(ps, ps.size(), StirModes{});
+    update_volume_weights<L>(ps, all, false);
+    settle_volume_weights<L>(ps, nl, box, k, EosParams{}, ps.size(), false, [] {});
+    (void)acceleration_time_step_min<L>(ps, ps.size(), 0.2);
+    (void)skin_use_max<L>(ps, ps.size(), nullptr, 1.0, 1.0, 100.0);
+    limit_own_steps<L>(ps, all, 1.0, 1.0, 0.2, 2.0);
+    (void)own_step_extremes<L>(ps, ps.size());
+    close_steps<L>(ps, all, 1.0, 1.0, 0, false);
+    add_rung_needs<L>(ps, nl, nullptr);
+    (void)open_steps<L>(ps, ps.size(), nullptr, nullptr, 1.0, 0);
+    drift<L>(ps, ps.size(), box, 1.0, 0, 1.0);
+}
+
+} // namespace cuda_detail
 } // namespace exasph

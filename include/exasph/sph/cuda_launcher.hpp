@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "exasph/sph/launch.hpp"
+#include "exasph/sph/pass_kernels.hpp"
 #include "exasph/tree/device_lists.hpp"
 
 // The CUDA backend's launcher (the interface of sph/launch.hpp): one CUDA thread per particle,
@@ -19,17 +20,25 @@ struct CudaLauncher {
     template <class T>
     using Lists = DeviceLists<T>;
 
+    // Each takes only the kernels of sph/pass_kernels.hpp (the ones src/cuda/passes.cu
+    // instantiates): a pass that launches another does not compile.
+    using Listed = PassKernels<double>;
     template <class Kernel>
+    requires kListed<Kernel, Listed::each>
     static void for_each(std::size_t n, const Kernel& k);
     template <class Kernel>
+    requires kListed<Kernel, Listed::reduce>
     static ResultOf<Kernel> reduce(std::size_t n, const Kernel& k);
     // The particles idx[0, n) (block time steps' active ones): idx must be device-readable
     // (FieldArray, managed memory).
     template <class Kernel>
+    requires kListed<Kernel, Listed::each_of>
     static void for_each_of(const std::uint32_t* idx, std::size_t n, const Kernel& k);
     template <class Kernel>
+    requires kListed<Kernel, Listed::reduce_of>
     static ResultOf<Kernel> reduce_of(const std::uint32_t* idx, std::size_t n, const Kernel& k);
     template <class T, class Kernel>
+    requires kListed<Kernel, Listed::neighbours>
     static ResultOf<Kernel> for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k);
 };
 
