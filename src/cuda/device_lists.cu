@@ -6,6 +6,7 @@
 
 #include "check.cuh"
 #include "exasph/tree/device_lists.hpp"
+#include "grid.cuh"
 
 namespace exasph {
 
@@ -29,11 +30,8 @@ void DeviceBuffer::release() {
 
 namespace {
 
-constexpr unsigned kThreads = 128;
-
-unsigned blocks_for(std::size_t n) {
-    return unsigned((n + kThreads - 1) / kThreads);
-}
+using cuda::blocks_for;
+using cuda::kThreads;
 
 // Pass 1: the count of every list; pass 2 (index non-null): the lists, at their slots. Slot s
 // is particle member[s] (member null: s).

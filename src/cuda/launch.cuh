@@ -12,15 +12,13 @@
 
 #include "check.cuh"
 #include "exasph/sph/cuda_launcher.hpp"
+#include "grid.cuh"
 
 namespace exasph {
 namespace cuda_detail {
 
-constexpr unsigned kThreads = 128;
-
-inline unsigned blocks_for(std::size_t n) {
-    return unsigned((n + kThreads - 1) / kThreads);
-}
+using cuda::blocks_for;
+using cuda::kThreads;
 
 // Reduction R of v over the block, written by thread 0 to out[blockIdx.x] (raw shared storage:
 // a value type with default member initialisers cannot be a __shared__ array).

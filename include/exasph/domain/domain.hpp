@@ -96,7 +96,7 @@ class Domain {
         for (std::size_t i = 0; i < ps.size(); ++i) dest[i] = asg_.owner[leaf_[i]];
         const bool moved =
             migrate_particles(ps, dest, coll_.rank(), coll_.size(), asg_.count[coll_.rank()],
-                              coll_.comm(), kTagMigrate, coll_.record());
+                              coll_.comm(), MessageTag::migrate, coll_.record());
         n_owned_ = ps.size();
         std::vector<int>().swap(dest); // the sort below is the step's memory peak
         std::vector<std::uint32_t>().swap(leaf_);
@@ -147,8 +147,8 @@ class Domain {
         const double t0 = wall_seconds();
         PostedHalos x;
         if (!spare_.empty()) x = std::move(spare_.back()), spare_.pop_back();
-        post_halo_fields(ps, plan_, FieldSelection{ps.fields(roles), false}, coll_.comm(), kTagHalo,
-                         coll_.record(), x);
+        post_halo_fields(ps, plan_, FieldSelection{ps.fields(roles), false}, coll_.comm(),
+                         MessageTag::halo, coll_.record(), x);
         coll_.record().halo_time(x.posted_at - t0, 0.0);
         return x;
     }
@@ -171,7 +171,8 @@ class Domain {
     // Block time steps: each halo's value of v (owned, then halos) goes back to its owner, which
     // keeps the largest (return_halo_max).
     void return_halo_max(FieldArray<int>& v) {
-        exasph::return_halo_max(v, n_owned_, plan_, coll_.comm(), kTagHaloReturn, coll_.record());
+        exasph::return_halo_max(v, n_owned_, plan_, coll_.comm(), MessageTag::halo_return,
+                                coll_.record());
     }
 
     std::size_t n_owned() const {
@@ -216,10 +217,6 @@ class Domain {
     }
 
   private:
-    static constexpr int kTagMigrate = 7101;
-    static constexpr int kTagHaloCount = 7102;
-    static constexpr int kTagHalo = 7103;
-    static constexpr int kTagHaloReturn = 7104;
     SortScratch sort_scratch_; // kept between syncs only with block time steps
 
     std::uint64_t bucket_for(const std::vector<std::uint64_t>& counts) const {
@@ -256,13 +253,13 @@ class Domain {
         plan_.partners = halo_partners(index_, asg_, coll_.rank(), box);
         plan_halo_sends(plan_, index_, local_tree_, ps.data(Field::x), ps.data(Field::y),
                         ps.data(Field::z), ps.data(Field::h), coll_.rank(), box);
-        exchange_halo_counts(plan_, coll_.comm(), kTagHaloCount, coll_.record());
+        exchange_halo_counts(plan_, coll_.comm(), MessageTag::halo_count, coll_.record());
         sent_.assign(n_owned_, 0);
         for (const auto& list : plan_.send)
             for (std::uint32_t i : list) sent_[i] = 1;
         ps.resize(n_owned_ + plan_.n_halo);
         exchange_halo_fields(ps, n_owned_, plan_, FieldSelection{ps.fields(kHaloSync), true},
-                             coll_.comm(), kTagHalo, coll_.record());
+                             coll_.comm(), MessageTag::halo, coll_.record());
         // Sources own ascending key ranges and send in SFC order: the halos arrive sorted.
         std::vector<std::uint64_t> hkeys(plan_.n_halo);
         compute_sfc_keys(ps.data(Field::x) + n_owned_, ps.data(Field::y) + n_owned_,

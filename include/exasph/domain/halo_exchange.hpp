@@ -6,6 +6,7 @@
 #include "exasph/util/mpi.hpp"
 
 #include "exasph/domain/comm_record.hpp"
+#include "exasph/domain/message_tag.hpp"
 #include "exasph/domain/particle_exchange.hpp"
 #include "exasph/util/field_memory.hpp"
 
@@ -22,15 +23,17 @@ struct HaloPlan {
 };
 
 // Learns how many halos each partner sends (point-to-point with partners only).
-inline void exchange_halo_counts(HaloPlan& plan, MPI_Comm comm, int tag, CommRecord& rec) {
+inline void exchange_halo_counts(HaloPlan& plan, MPI_Comm comm, MessageTag tag, CommRecord& rec) {
     const std::size_t np = plan.partners.size();
     std::vector<std::uint64_t> send_count(np);
     plan.recv_count.assign(np, 0);
     std::vector<MPI_Request> reqs(2 * np);
     for (std::size_t k = 0; k < np; ++k) {
         send_count[k] = plan.send[k].size();
-        MPI_Irecv(&plan.recv_count[k], 1, MPI_UINT64_T, plan.partners[k], tag, comm, &reqs[k]);
-        MPI_Isend(&send_count[k], 1, MPI_UINT64_T, plan.partners[k], tag, comm, &reqs[np + k]);
+        MPI_Irecv(&plan.recv_count[k], 1, MPI_UINT64_T, plan.partners[k], mpi_tag(tag), comm,
+                  &reqs[k]);
+        MPI_Isend(&send_count[k], 1, MPI_UINT64_T, plan.partners[k], mpi_tag(tag), comm,
+                  &reqs[np + k]);
         rec.received(plan.partners[k], Traffic::halo, sizeof(std::uint64_t));
         rec.sent(plan.partners[k], Traffic::halo, sizeof(std::uint64_t));
     }
@@ -65,7 +68,7 @@ inline void grow(std::vector<double>& buf, std::size_t n) {
 // once.
 template <class T>
 void post_halo_fields(const ParticleSet<T>& ps, const HaloPlan& plan, const FieldSelection& sel,
-                      MPI_Comm comm, int tag, CommRecord& rec, PostedHalos& x) {
+                      MPI_Comm comm, MessageTag tag, CommRecord& rec, PostedHalos& x) {
     const std::size_t np = plan.partners.size();
     const std::size_t per = sel.doubles_per_particle();
     x.sel = sel;
@@ -76,8 +79,8 @@ void post_halo_fields(const ParticleSet<T>& ps, const HaloPlan& plan, const Fiel
         if (plan.recv_count[k] == 0) continue;
         grow(x.recv[k], plan.recv_count[k] * per);
         x.reqs.emplace_back();
-        MPI_Irecv(x.recv[k].data(), int(x.recv[k].size()), MPI_DOUBLE, plan.partners[k], tag, comm,
-                  &x.reqs.back());
+        MPI_Irecv(x.recv[k].data(), int(x.recv[k].size()), MPI_DOUBLE, plan.partners[k],
+                  mpi_tag(tag), comm, &x.reqs.back());
         rec.received(plan.partners[k], Traffic::halo, x.recv[k].size() * sizeof(double));
     }
     for (std::size_t k = 0; k < np; ++k) {
@@ -85,8 +88,8 @@ void post_halo_fields(const ParticleSet<T>& ps, const HaloPlan& plan, const Fiel
         grow(x.send[k], plan.send[k].size() * per);
         pack_particles(ps, plan.send[k].data(), plan.send[k].size(), sel, x.send[k].data());
         x.reqs.emplace_back();
-        MPI_Isend(x.send[k].data(), int(x.send[k].size()), MPI_DOUBLE, plan.partners[k], tag, comm,
-                  &x.reqs.back());
+        MPI_Isend(x.send[k].data(), int(x.send[k].size()), MPI_DOUBLE, plan.partners[k],
+                  mpi_tag(tag), comm, &x.reqs.back());
         rec.sent(plan.partners[k], Traffic::halo, x.send[k].size() * sizeof(double));
     }
     x.posted_at = wall_seconds();
@@ -113,7 +116,8 @@ void finish_halo_fields(ParticleSet<T>& ps, std::size_t n_owned, const HaloPlan&
 // Both at once: the halos of the selected fields, from owners to their copies.
 template <class T>
 void exchange_halo_fields(ParticleSet<T>& ps, std::size_t n_owned, const HaloPlan& plan,
-                          const FieldSelection& sel, MPI_Comm comm, int tag, CommRecord& rec) {
+                          const FieldSelection& sel, MPI_Comm comm, MessageTag tag,
+                          CommRecord& rec) {
     PostedHalos x;
     post_halo_fields(ps, plan, sel, comm, tag, rec, x);
     finish_halo_fields(ps, n_owned, plan, x, rec);
@@ -123,7 +127,7 @@ void exchange_halo_fields(ParticleSet<T>& ps, std::size_t n_owned, const HaloPla
 // to its owner, which keeps the largest of its own and those that come back (a particle may be a
 // halo on several ranks). Block time steps: the limiter's bound on a neighbour's rung.
 inline void return_halo_max(FieldArray<int>& v, std::size_t n_owned, const HaloPlan& plan,
-                            MPI_Comm comm, int tag, CommRecord& rec) {
+                            MPI_Comm comm, MessageTag tag, CommRecord& rec) {
     const std::size_t np = plan.partners.size();
     std::vector<std::vector<int>> recv(np);
     std::vector<MPI_Request> reqs;
@@ -132,15 +136,15 @@ inline void return_halo_max(FieldArray<int>& v, std::size_t n_owned, const HaloP
         if (plan.send[k].empty()) continue;
         recv[k].resize(plan.send[k].size());
         reqs.emplace_back();
-        MPI_Irecv(recv[k].data(), int(recv[k].size()), MPI_INT, plan.partners[k], tag, comm,
-                  &reqs.back());
+        MPI_Irecv(recv[k].data(), int(recv[k].size()), MPI_INT, plan.partners[k], mpi_tag(tag),
+                  comm, &reqs.back());
         rec.received(plan.partners[k], Traffic::halo, recv[k].size() * sizeof(int));
     }
     for (std::size_t k = 0; k < np; ++k) {
         if (plan.recv_count[k] == 0) continue;
         reqs.emplace_back();
         MPI_Isend(v.data() + n_owned + plan.recv_offset[k], int(plan.recv_count[k]), MPI_INT,
-                  plan.partners[k], tag, comm, &reqs.back());
+                  plan.partners[k], mpi_tag(tag), comm, &reqs.back());
         rec.sent(plan.partners[k], Traffic::halo, plan.recv_count[k] * sizeof(int));
     }
     wait_all(reqs, rec);

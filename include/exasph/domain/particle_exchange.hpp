@@ -6,6 +6,7 @@
 #include "exasph/util/mpi.hpp"
 
 #include "exasph/domain/comm_record.hpp"
+#include "exasph/domain/message_tag.hpp"
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/util/error.hpp"
 
@@ -68,7 +69,7 @@ void unpack_particles(ParticleSet<T>& ps, std::size_t offset, std::size_t count,
 // untouched, in their old order.
 template <class T>
 bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me, int nranks,
-                       std::uint64_t expected, MPI_Comm comm, int tag, CommRecord& rec) {
+                       std::uint64_t expected, MPI_Comm comm, MessageTag tag, CommRecord& rec) {
     std::size_t leaving = 0;
 #pragma omp parallel for schedule(static) reduction(+ : leaving)
     for (std::size_t i = 0; i < dest.size(); ++i) leaving += dest[i] != me;
@@ -87,7 +88,7 @@ bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me,
         send_buf[r].resize(out[r].size() * per);
         pack_particles(ps, out[r].data(), out[r].size(), sel, send_buf[r].data());
         reqs.emplace_back();
-        MPI_Isend(send_buf[r].data(), int(send_buf[r].size()), MPI_DOUBLE, r, tag, comm,
+        MPI_Isend(send_buf[r].data(), int(send_buf[r].size()), MPI_DOUBLE, r, mpi_tag(tag), comm,
                   &reqs.back());
         rec.sent(r, Traffic::migration, send_buf[r].size() * sizeof(double));
     }
@@ -98,12 +99,13 @@ bool migrate_particles(ParticleSet<T>& ps, const std::vector<int>& dest, int me,
     while (ps.size() < expected) {
         MPI_Status st;
         const double t0 = wall_seconds();
-        MPI_Probe(MPI_ANY_SOURCE, tag, comm, &st);
+        MPI_Probe(MPI_ANY_SOURCE, mpi_tag(tag), comm, &st);
         rec.waited(wall_seconds() - t0);
         int ndoubles = 0;
         MPI_Get_count(&st, MPI_DOUBLE, &ndoubles);
         buf.resize(std::size_t(ndoubles));
-        MPI_Recv(buf.data(), ndoubles, MPI_DOUBLE, st.MPI_SOURCE, tag, comm, MPI_STATUS_IGNORE);
+        MPI_Recv(buf.data(), ndoubles, MPI_DOUBLE, st.MPI_SOURCE, mpi_tag(tag), comm,
+                 MPI_STATUS_IGNORE);
         rec.received(st.MPI_SOURCE, Traffic::migration, std::uint64_t(ndoubles) * sizeof(double));
         const std::size_t count = std::size_t(ndoubles) / per;
         const std::size_t offset = ps.size();

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "exasph/domain/message_tag.hpp"
 #include "exasph/util/mpi.hpp"
 
 #include "exasph/domain/collectives.hpp"
@@ -62,8 +63,6 @@ class GravitySolver {
     }
 
   private:
-    static constexpr int kTag = 7201;
-
     struct Range {
         std::uint32_t begin = 0, end = 0;
     };
@@ -140,8 +139,8 @@ class GravitySolver {
             remote_ += count;
             recv[s].resize(count * 5);
             reqs.emplace_back();
-            MPI_Irecv(recv[s].data(), int(recv[s].size()), MPI_DOUBLE, s, kTag, coll.comm(),
-                      &reqs.back());
+            MPI_Irecv(recv[s].data(), int(recv[s].size()), MPI_DOUBLE, s,
+                      mpi_tag(MessageTag::gravity), coll.comm(), &reqs.back());
             coll.record().received(s, Traffic::gravity, recv[s].size() * sizeof(double));
         }
         std::vector<char> send_leaf(f1 - f0);
@@ -161,8 +160,8 @@ class GravitySolver {
             }
             if (send[r].empty()) continue;
             reqs.emplace_back();
-            MPI_Isend(send[r].data(), int(send[r].size()), MPI_DOUBLE, r, kTag, coll.comm(),
-                      &reqs.back());
+            MPI_Isend(send[r].data(), int(send[r].size()), MPI_DOUBLE, r,
+                      mpi_tag(MessageTag::gravity), coll.comm(), &reqs.back());
             coll.record().sent(r, Traffic::gravity, send[r].size() * sizeof(double));
         }
         wait_all(reqs, coll.record());

@@ -3,6 +3,7 @@
 #include <cstddef>
 
 #include "exasph/particles/field_list.hpp"
+#include "exasph/particles/particle_index.hpp"
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/util/annotate.hpp"
 

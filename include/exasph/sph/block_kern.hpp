@@ -33,7 +33,7 @@ struct OwnStepLimitKernel {
     double accel_eps;    // 0: no acceleration limit
     double growth;       // 2, or 4 at a block's start
 
-    EXASPH_HD void operator()(std::uint32_t i) const {
+    EXASPH_HD void operator()(ParticleIndex i) const {
         double dt = double(p[Field::dtc][i]);
         if (accel_eps > 0)
             dt = std::min(dt, acceleration_time_step(
@@ -60,7 +60,7 @@ struct CloseStepKernel {
     bool first; // no step has begun yet: nothing to close
     using Reduction = FirstIndexWhere;
 
-    EXASPH_HD FoundIndex operator()(std::uint32_t i) const {
+    EXASPH_HD FoundIndex operator()(ParticleIndex i) const {
         const int old = int(p[Field::rung][i]);
         if (!first) {
             const T hs = T(double(rung_ticks(old)) * half_tick_dt);
@@ -85,7 +85,7 @@ struct RungNeedKernel {
     int* need;
 
     template <class Span>
-    EXASPH_HD void operator()(std::uint32_t i, Span nb) const {
+    EXASPH_HD void operator()(ParticleIndex i, Span nb) const {
         const int bound = int(p[Field::rung][i]) - 2;
         if (bound <= 0) return; // every rung is at least 0
         for (std::uint32_t k = 0; k < nb.count; ++k) atomic_max(need + nb[k], bound);
@@ -107,7 +107,7 @@ struct OpenStepKernel {
     std::int64_t tick;
     using Reduction = MinOf<std::int64_t>;
 
-    EXASPH_HD std::int64_t operator()(std::uint32_t i) const {
+    EXASPH_HD std::int64_t operator()(ParticleIndex i) const {
         int r = int(p[Field::rung][i]);
         const int bound = need ? need[i] : -1;
         if (active[i] || bound > r) {
@@ -138,7 +138,7 @@ struct DriftKernel {
     std::int64_t next;
     double tick_dt;
 
-    EXASPH_HD void operator()(std::uint32_t i) const {
+    EXASPH_HD void operator()(ParticleIndex i) const {
         for (int d = 0; d < 3; ++d) { // x_m1: where this sub-step's densities were computed
             const T x0 = p[component(Field::x, d)][i];
             const T x = x0 + p[component(Field::vhx, d)][i] * dt;
@@ -163,7 +163,7 @@ struct ValueKernel {
     const T* v;
     using Reduction = R;
 
-    EXASPH_HD double operator()(std::uint32_t i) const { return double(v[i]); }
+    EXASPH_HD double operator()(ParticleIndex i) const { return double(v[i]); }
 };
 
 // Stores a neighbour kernel's result per particle instead of reducing it (block time steps: each
@@ -176,7 +176,7 @@ struct StoreResultKernel {
 
     // Without `out` (global steps) the result is reduced as usual.
     template <class Span>
-    EXASPH_HD double operator()(std::uint32_t i, Span nb) const {
+    EXASPH_HD double operator()(ParticleIndex i, Span nb) const {
         const double r = double(k(i, nb));
         if (!out) return r;
         out[i] = T(r);

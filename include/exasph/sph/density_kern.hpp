@@ -71,7 +71,7 @@ template <class T, class N, class Span>
 EXASPH_HD DensityPairSums<T> density_pairs(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
                                            const Box<T>& box, const KernelView<T>& k, double k0,
                                            double dh0) {
-#ifdef EXASPH_SIMD_PAIRS
+#ifdef EXASPH_SIMD_LANES
     if constexpr (std::is_same_v<T, double> && std::is_same_v<N, float> &&
                   std::is_same_v<Span, ContiguousSpan>) {
         const simd::DensitySums s = simd::DensityPairs<simd::Native>(a, p, box, k).sum(nb);
@@ -115,7 +115,7 @@ struct DensityEosKernel {
     bool capture_rho0 = false;
 
     template <class Span>
-    EXASPH_HD void operator()(std::uint32_t i, Span nb) const {
+    EXASPH_HD void operator()(ParticleIndex i, Span nb) const {
         auto r = density_kern(i, nb, p, box, k);
         const N rho = N(r.rho); // N: float, or T with --double-precision (is_narrow)
         p.narrow(Field::rho)[i] = rho;

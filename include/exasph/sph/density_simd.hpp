@@ -7,7 +7,7 @@
 // step (docs/performance-log.md).
 #include "exasph/sph/simd_isa.hpp"
 
-#ifdef EXASPH_SIMD_PAIRS
+#ifdef EXASPH_SIMD_LANES
 #include <cstdint>
 
 #include "exasph/kernel/kernel_table.hpp"

@@ -92,7 +92,7 @@ EXASPH_HD IadSums<T> iad_sums_portable(std::uint32_t a, Span nb, const ParticleV
 template <bool kGrad, bool kOwnK, class T, class K, class N, class Span>
 EXASPH_HD IadSums<T> iad_sums(std::uint32_t a, Span nb, const ParticleView<T, N>& p,
                               const Box<T>& box, const KernelView<T>& k, const K* kx) {
-#ifdef EXASPH_SIMD_PAIRS
+#ifdef EXASPH_SIMD_LANES
     if constexpr (!kOwnK && std::is_same_v<T, double> && std::is_same_v<N, float> &&
                   std::is_same_v<Span, ContiguousSpan>)
         return simd::IadPairs<simd::Native, kGrad, K>(a, p, box, k, kx).sum(nb);
@@ -154,7 +154,7 @@ struct IadKernel {
     using Reduction = FirstIndexWhere;
 
     template <class Span>
-    EXASPH_HD FoundIndex operator()(std::uint32_t i, Span nb) const {
+    EXASPH_HD FoundIndex operator()(ParticleIndex i, Span nb) const {
         VelocityGradient<T> g;
         auto r = iad_kern(i, nb, p, box, k, with_gradient ? &g : nullptr, own_k);
         if (stress_inv_w0 > T(0)) {

@@ -5,7 +5,7 @@
 // remainder as one masked step, the minimum image only for groups that may need it.
 #include "exasph/sph/simd_isa.hpp"
 
-#ifdef EXASPH_SIMD_PAIRS
+#ifdef EXASPH_SIMD_LANES
 #include <cstdint>
 #include <type_traits>
 

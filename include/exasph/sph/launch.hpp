@@ -64,25 +64,25 @@ struct OmpParticleLoops {
     static void for_each(std::size_t n, const Kernel& k) {
         const auto nn = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
-        for (std::int64_t i = 0; i < nn; ++i) k(std::uint32_t(i));
+        for (std::int64_t i = 0; i < nn; ++i) k(ParticleIndex(i));
     }
 
     // The particles idx[0, n) (block time steps: the active ones).
     template <class Kernel>
-    static void for_each_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
+    static void for_each_of(const ParticleIndex* idx, std::size_t n, const Kernel& k) {
         const auto nn = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
         for (std::int64_t s = 0; s < nn; ++s) k(idx[s]);
     }
 
     template <class Kernel>
-    static ResultOf<Kernel> reduce_of(const std::uint32_t* idx, std::size_t n, const Kernel& k) {
+    static ResultOf<Kernel> reduce_of(const ParticleIndex* idx, std::size_t n, const Kernel& k) {
         return reduce_slots(n, k, [idx](std::int64_t s) { return idx[s]; });
     }
 
     template <class Kernel>
     static ResultOf<Kernel> reduce(std::size_t n, const Kernel& k) {
-        return reduce_slots(n, k, [](std::int64_t s) { return std::uint32_t(s); });
+        return reduce_slots(n, k, [](std::int64_t s) { return ParticleIndex(s); });
     }
 
   private:

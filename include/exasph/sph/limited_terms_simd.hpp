@@ -5,7 +5,7 @@
 // portable loop's order of operations.
 #include "exasph/sph/simd_isa.hpp"
 
-#ifdef EXASPH_SIMD_PAIRS
+#ifdef EXASPH_SIMD_LANES
 #include <cstdint>
 
 #include "exasph/particles/particle_view.hpp"

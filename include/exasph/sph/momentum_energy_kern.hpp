@@ -91,7 +91,7 @@ template <class T, PairTerms kTerms = PairTerms::any, bool kAlphaField = true,
 EXASPH_HD MomentumEnergyResult<T>
 momentum_energy_kern(std::uint32_t a, Span nb, const ParticleView<T, N>& p, const Box<T>& box,
                      const KernelView<T>& k, const Dissipation<T>& diss = {}) {
-#ifdef EXASPH_SIMD_PAIRS
+#ifdef EXASPH_SIMD_LANES
     constexpr bool kSimdTypes = std::is_same_v<T, double> && std::is_same_v<N, float> &&
                                 std::is_same_v<Span, ContiguousSpan>;
     if constexpr (kTerms == PairTerms::plain && !kAlphaField && !kVolumeElements && kSimdTypes) {
@@ -120,7 +120,7 @@ struct MomentumEnergyKernel {
     using Reduction = MinOf<double>; // the Courant step of the pass
 
     template <class Span>
-    EXASPH_HD T operator()(std::uint32_t i, Span nb) const {
+    EXASPH_HD T operator()(ParticleIndex i, Span nb) const {
         auto r =
             momentum_energy_kern<T, kTerms, kAlphaField, kVolumeElements>(i, nb, p, box, k, diss);
         p[Field::ax][i] = r.ax;

@@ -5,7 +5,7 @@
 #include "exasph/sph/simd_isa.hpp"
 
 namespace exasph {
-#ifdef EXASPH_SIMD_PAIRS
+#ifdef EXASPH_SIMD_LANES
 inline constexpr const char* kPairLoopIsa = simd::Native::kName;
 #else
 inline constexpr const char* kPairLoopIsa = "portable";

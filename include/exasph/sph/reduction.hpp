@@ -3,6 +3,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "exasph/particles/particle_index.hpp"
 #include "exasph/util/annotate.hpp"
 
 // Typed reductions: what a launcher (sph/launch.hpp) makes of the values a kernel returns. A
@@ -45,11 +46,11 @@ struct SumOf {
 // A particle index that a kernel found (a singular matrix, a step below the shortest rung), or
 // none.
 struct FoundIndex {
-    static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-    std::uint32_t index = kNone;
+    static constexpr ParticleIndex kNone = std::numeric_limits<ParticleIndex>::max();
+    ParticleIndex index = kNone;
 
     EXASPH_HD static constexpr FoundIndex none() { return {}; }
-    EXASPH_HD static constexpr FoundIndex at(std::uint32_t i) { return {i}; }
+    EXASPH_HD static constexpr FoundIndex at(ParticleIndex i) { return {i}; }
     EXASPH_HD constexpr bool found() const { return index != kNone; }
 };
 

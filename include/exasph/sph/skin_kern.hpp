@@ -23,7 +23,7 @@ struct SkinUseKernel {
     T dt, dt_m1, ng0;
     using Reduction = MaxOf<double>;
 
-    EXASPH_HD double operator()(std::uint32_t i) const {
+    EXASPH_HD double operator()(ParticleIndex i) const {
         const Field pos[3] = {Field::x, Field::y, Field::z};
         const Field prev[3] = {Field::x_m1, Field::y_m1, Field::z_m1};
         const Field acc[3] = {Field::ax, Field::ay, Field::az};

@@ -28,7 +28,7 @@ struct StirKernel {
     ParticleView<T, N> p;
     StirModes modes;
 
-    EXASPH_HD void operator()(std::uint32_t i) const {
+    EXASPH_HD void operator()(ParticleIndex i) const {
         constexpr int K = kMaxStirWave;
         const Field pos[3] = {Field::x, Field::y, Field::z};
         double er[3][2 * K + 1], ei[3][2 * K + 1]; // exp(i n k0 x) at index n + K

@@ -27,7 +27,7 @@ struct PressAxisKernel {
     T dt, dt_m1;
     int axis;
 
-    EXASPH_HD void operator()(std::uint32_t i) const {
+    EXASPH_HD void operator()(ParticleIndex i) const {
         const Field pos[3] = {Field::x, Field::y, Field::z};
         const Field prev[3] = {Field::x_m1, Field::y_m1, Field::z_m1};
         const Field vel[3] = {Field::vx, Field::vy, Field::vz};
@@ -47,7 +47,7 @@ struct EnergyUpdateKernel {
     ParticleView<T, N> p;
     T dt, dt_m1;
 
-    EXASPH_HD void operator()(std::uint32_t i) const {
+    EXASPH_HD void operator()(ParticleIndex i) const {
         p[Field::u][i] =
             adams_bashforth_energy(p[Field::u][i], p[Field::du][i], p[Field::du_m1][i], dt, dt_m1);
         p[Field::du_m1][i] = p[Field::du][i];
@@ -60,7 +60,7 @@ struct SmoothingLengthKernel {
     ParticleView<T, N> p;
     T ng0;
 
-    EXASPH_HD void operator()(std::uint32_t i) const {
+    EXASPH_HD void operator()(ParticleIndex i) const {
         p[Field::h][i] = update_smoothing_length(p[Field::h][i], T(p.narrow(Field::nc)[i]), ng0);
     }
 };
@@ -72,7 +72,7 @@ struct ViscosityKernel {
     T dt, alpha_min, alpha_max, decay;
     const T* own_dt = nullptr; // block time steps: each particle's own step (Field::dtc)
 
-    EXASPH_HD void operator()(std::uint32_t i) const {
+    EXASPH_HD void operator()(ParticleIndex i) const {
         T* alpha = p[Field::alpha];
         alpha[i] =
             evolve_alpha(alpha[i], p[Field::divv][i], p[Field::h][i], T(p.narrow(Field::c)[i]),
@@ -95,7 +95,7 @@ struct VolumeWeightKernel {
     ParticleView<T, N> p;
     bool energy = false;
 
-    EXASPH_HD void operator()(std::uint32_t i) const {
+    EXASPH_HD void operator()(ParticleIndex i) const {
         if (energy) {
             p[Field::xm][i] = p[Field::m][i] * p[Field::u][i];
             return;
@@ -112,7 +112,7 @@ struct AccelerationStepKernel {
     double eps;
     using Reduction = MinOf<double>;
 
-    EXASPH_HD double operator()(std::uint32_t i) const {
+    EXASPH_HD double operator()(ParticleIndex i) const {
         return acceleration_time_step(double(p[Field::h][i]), double(p[Field::ax][i]),
                                       double(p[Field::ay][i]), double(p[Field::az][i]), eps);
     }

@@ -5,13 +5,10 @@
 #include <type_traits>
 #include <vector>
 
-#if (defined(__AVX2__) && defined(__FMA__)) || defined(__AVX512F__)
-#include <immintrin.h>
-#endif
-
 #include "exasph/tree/leaf_scan.hpp"
 #include "exasph/tree/neighbour_search.hpp"
 #include "exasph/util/annotate.hpp"
+#include "exasph/util/simd_sets.hpp"
 
 // The candidate leaves of a leaf group as box arrays, and which of them a particle reaches:
 // the first test of the neighbour search's encoding (tree/neighbour_encode.hpp).
@@ -32,9 +29,9 @@ struct CandidateBoxes {
     std::vector<unsigned char> reached, wraps;
     std::vector<std::uint64_t> reached_words; // bit l: candidate l reached
     bool any_wraps = false;                   // some wraps[l]
-    // The box arrays hold whole steps of kLanes: the padding's boxes lie at infinity.
-#if defined(__AVX512F__)
-    static constexpr std::size_t kLanes = 8;
+    // The box arrays hold whole halves of kLanes: the padding's boxes lie at infinity.
+#ifdef EXASPH_SIMD_LANES
+    static constexpr std::size_t kLanes = simd::Native::kHalf;
 #else
     static constexpr std::size_t kLanes = 4;
 #endif
@@ -85,9 +82,9 @@ EXASPH_INLINE const unsigned char* mark_reached_leaves(CandidateBoxes<T>& boxes,
     unsigned char* reached = boxes.reached.data();
 #pragma omp simd
     for (std::size_t l = 0; l < nleaves; ++l) {
-        T gx = std::abs(wrap(cx[l] - pos[0], lx, hx)) - ex[l];
-        T gy = std::abs(wrap(cy[l] - pos[1], ly, hy)) - ey[l];
-        T gz = std::abs(wrap(cz[l] - pos[2], lz, hz)) - ez[l];
+        T gx = std::abs(min_image(cx[l] - pos[0], lx, hx)) - ex[l];
+        T gy = std::abs(min_image(cy[l] - pos[1], ly, hy)) - ey[l];
+        T gz = std::abs(min_image(cz[l] - pos[2], lz, hz)) - ez[l];
         gx = gx > T(0) ? gx : T(0);
         gy = gy > T(0) ? gy : T(0);
         gz = gz > T(0) ? gz : T(0);
@@ -97,91 +94,36 @@ EXASPH_INLINE const unsigned char* mark_reached_leaves(CandidateBoxes<T>& boxes,
     return reached;
 }
 
-#if defined(__AVX512F__)
-#define EXASPH_LEAF_BOXES_AVX512 1
-// reached_leaf_bits on eight candidates per step, with the minimum image only where some leaf
-// of the group may need it (kWrap: CandidateBoxes::any_wraps; elsewhere the image changes no
-// centre's offset, by the argument of CandidateBoxes::wraps, so the bits are the same). The
-// arithmetic of reached_leaf_bits_avx2.
-template <bool kWrap>
-void reached_leaf_bits_avx512(const CandidateBoxes<double>& boxes, std::size_t nleaves,
-                              const double (&pos)[3], double hi, bool symmetric,
-                              const PeriodicImage<double>& im, std::uint64_t* words) {
-    __m512d p[3], len[3], half[3], neg_half[3];
-    for (int d = 0; d < 3; ++d) {
-        p[d] = _mm512_set1_pd(pos[d]);
-        len[d] = _mm512_set1_pd(im.len[d]);
-        half[d] = _mm512_set1_pd(im.half[d]);
-        neg_half[d] = _mm512_set1_pd(-im.half[d]);
-    }
-    const __m512d vhi = _mm512_set1_pd(hi), zero = _mm512_setzero_pd(), two = _mm512_set1_pd(2.0);
-    constexpr __mmask8 kAll = 0xff; // zero-masking forms: GCC 12's bug 105593 (leaf_scan.hpp)
+#ifdef EXASPH_SIMD_LANES
+// mark_reached_leaves on lane set V, a half's candidates per compare, as bits (GCC left the
+// portable loop scalar: doubles in, bytes out). The same arithmetic: the minimum image (only
+// where some leaf of the group may need it, kWrap: CandidateBoxes::any_wraps; elsewhere it
+// changes no centre's offset, by the argument of CandidateBoxes::wraps, so the bits are the
+// same), the gap to the inflated box per axis clamped at 0, then
+// |gap|^2 < (2 max(h_a, hmax_l))^2.
+template <class V, bool kWrap>
+void reached_leaf_bits_lanes(const CandidateBoxes<double>& boxes, std::size_t nleaves,
+                             const double (&pos)[3], double hi, bool symmetric,
+                             const PeriodicImage<double>& im, std::uint64_t* words) {
+    using D = typename V::D;
+    const D p[3] = {V::splat(pos[0]), V::splat(pos[1]), V::splat(pos[2])};
+    const simd::Image<V> image(im);
+    const D vhi = V::splat(hi), zero = V::splat(0.0), two = V::splat(2.0);
     for (std::size_t w = 0; w < (nleaves + 63) / 64; ++w) {
         std::uint64_t word = 0;
         const std::size_t end = std::min(nleaves, 64 * w + 64);
-        for (std::size_t l = 64 * w; l < end; l += 8) {
-            __m512d r2 = zero;
+        for (std::size_t l = 64 * w; l < end; l += V::kHalf) {
+            D r2 = zero;
             for (int d = 0; d < 3; ++d) {
-                __m512d x = _mm512_sub_pd(_mm512_loadu_pd(boxes.c[d].data() + l), p[d]);
-                if constexpr (kWrap) {
-                    x = _mm512_mask_sub_pd(x, _mm512_cmp_pd_mask(x, half[d], _CMP_GT_OQ), x,
-                                           len[d]);
-                    x = _mm512_mask_add_pd(x, _mm512_cmp_pd_mask(x, neg_half[d], _CMP_LT_OQ), x,
-                                           len[d]);
-                }
-                __m512d g = _mm512_sub_pd(_mm512_abs_pd(x), _mm512_loadu_pd(boxes.e[d].data() + l));
-                g = _mm512_maskz_mov_pd(_mm512_cmp_pd_mask(g, zero, _CMP_GT_OQ), g);
-                r2 = _mm512_fmadd_pd(g, g, r2);
+                D x = V::load(boxes.c[d].data() + l) - p[d];
+                if constexpr (kWrap) x = image(x, d);
+                const D g = abs(x) - V::load(boxes.e[d].data() + l);
+                const D gap = select(g > zero, g);
+                r2 = fma(gap, gap, r2);
             }
-            const __m512d h =
-                symmetric ? _mm512_maskz_max_pd(kAll, vhi, _mm512_loadu_pd(boxes.hmax.data() + l))
-                          : vhi;
-            const __m512d reach = _mm512_mul_pd(two, h);
-            const __mmask8 hit = _mm512_cmp_pd_mask(r2, _mm512_mul_pd(reach, reach), _CMP_LT_OQ);
-            word |= std::uint64_t(hit) << (l - 64 * w);
-        }
-        // The padding's lanes: never reached, even for a NaN position (whose gaps clamp to 0)
-        const std::size_t valid = end - 64 * w;
-        words[w] = valid < 64 ? word & ((std::uint64_t(1) << valid) - 1) : word;
-    }
-}
-#elif defined(__AVX2__) && defined(__FMA__)
-#define EXASPH_LEAF_BOXES_AVX2 1
-// mark_reached_leaves on four candidates per step, as bits (GCC left the portable loop scalar:
-// doubles in, bytes out). The same arithmetic: the minimum image, the gap to the inflated box
-// per axis clamped at 0, then |gap|^2 < (2 max(h_a, hmax_l))^2.
-inline void reached_leaf_bits_avx2(const CandidateBoxes<double>& boxes, std::size_t nleaves,
-                                   const double (&pos)[3], double hi, bool symmetric,
-                                   const PeriodicImage<double>& im, std::uint64_t* words) {
-    __m256d p[3], len[3], half[3], neg_half[3];
-    for (int d = 0; d < 3; ++d) {
-        p[d] = _mm256_set1_pd(pos[d]);
-        len[d] = _mm256_set1_pd(im.len[d]);
-        half[d] = _mm256_set1_pd(im.half[d]);
-        neg_half[d] = _mm256_set1_pd(-im.half[d]);
-    }
-    const __m256d vhi = _mm256_set1_pd(hi), zero = _mm256_setzero_pd(), two = _mm256_set1_pd(2.0);
-    const __m256d sign = _mm256_set1_pd(-0.0);
-    for (std::size_t w = 0; w < (nleaves + 63) / 64; ++w) {
-        std::uint64_t word = 0;
-        const std::size_t end = std::min(nleaves, 64 * w + 64);
-        for (std::size_t l = 64 * w; l < end; l += 4) {
-            __m256d r2 = zero;
-            for (int d = 0; d < 3; ++d) {
-                __m256d x = _mm256_sub_pd(_mm256_loadu_pd(boxes.c[d].data() + l), p[d]);
-                x = _mm256_sub_pd(x, _mm256_and_pd(_mm256_cmp_pd(x, half[d], _CMP_GT_OQ), len[d]));
-                x = _mm256_add_pd(x,
-                                  _mm256_and_pd(_mm256_cmp_pd(x, neg_half[d], _CMP_LT_OQ), len[d]));
-                __m256d g = _mm256_sub_pd(_mm256_andnot_pd(sign, x),
-                                          _mm256_loadu_pd(boxes.e[d].data() + l));
-                g = _mm256_and_pd(g, _mm256_cmp_pd(g, zero, _CMP_GT_OQ));
-                r2 = _mm256_fmadd_pd(g, g, r2);
-            }
-            const __m256d h =
-                symmetric ? _mm256_max_pd(vhi, _mm256_loadu_pd(boxes.hmax.data() + l)) : vhi;
-            const __m256d reach = _mm256_mul_pd(two, h);
-            const __m256d hit = _mm256_cmp_pd(r2, _mm256_mul_pd(reach, reach), _CMP_LT_OQ);
-            word |= std::uint64_t(_mm256_movemask_pd(hit)) << (l - 64 * w);
+            const D h = symmetric ? max(vhi, V::load(boxes.hmax.data() + l)) : vhi;
+            const D reach = two * h;
+            word |= std::uint64_t(simd::bits(r2 < reach * reach)) << (l - 64 * w);
         }
         // The padding's lanes: never reached, even for a NaN position (whose gaps clamp to 0)
         const std::size_t valid = end - 64 * w;
@@ -196,17 +138,13 @@ EXASPH_INLINE const std::uint64_t* reached_leaf_bits(CandidateBoxes<T>& boxes, s
                                                      const T (&pos)[3], T hi, bool symmetric,
                                                      const PeriodicImage<T>& im) {
     std::uint64_t* words = boxes.reached_words.data();
-#if defined(EXASPH_LEAF_BOXES_AVX512)
+#ifdef EXASPH_SIMD_LANES
     if constexpr (std::is_same_v<T, double>) {
+        using V = simd::Native;
         if (boxes.any_wraps)
-            reached_leaf_bits_avx512<true>(boxes, nleaves, pos, hi, symmetric, im, words);
+            reached_leaf_bits_lanes<V, true>(boxes, nleaves, pos, hi, symmetric, im, words);
         else
-            reached_leaf_bits_avx512<false>(boxes, nleaves, pos, hi, symmetric, im, words);
-        return words;
-    }
-#elif defined(EXASPH_LEAF_BOXES_AVX2)
-    if constexpr (std::is_same_v<T, double>) {
-        reached_leaf_bits_avx2(boxes, nleaves, pos, hi, symmetric, im, words);
+            reached_leaf_bits_lanes<V, false>(boxes, nleaves, pos, hi, symmetric, im, words);
         return words;
     }
 #endif

@@ -6,6 +6,17 @@
 
 namespace exasph {
 
+// The minimum image of a coordinate difference d along an axis of period len (half = len / 2;
+// an open axis: len = 0, half = infinity, and d is returned as it is). Valid for |d| < len, which
+// holds for two positions inside the box. The one scalar form: Box::min_image, PeriodicImage
+// and the loops that hoist len and half call it; the lanes' form is simd::Image
+// (util/simd_sets.hpp), with the same comparisons and single rounding.
+template <class T>
+EXASPH_HD EXASPH_INLINE T min_image(T d, T len, T half) {
+    d = d > half ? d - len : d;
+    return d < -half ? d + len : d; // after a shift down d > -half: one shift at most
+}
+
 // Axis-aligned simulation box. On a periodic axis [lo, hi) is the period; on an open axis it is
 // just the current bounds of the particles (used to scale SFC keys).
 // Invariant: on periodic axes all owned particles lie in [lo, hi).
@@ -18,14 +29,11 @@ struct Box {
     EXASPH_HD T length(int axis) const { return hi[axis] - lo[axis]; }
     EXASPH_HD bool any_periodic() const { return periodic[0] || periodic[1] || periodic[2]; }
 
-    // Minimum image of one coordinate difference. Valid for |d| < period, which holds for two
-    // positions inside the box.
+    // Minimum image of one coordinate difference (exasph::min_image).
     EXASPH_HD T min_image(T d, int axis) const {
         if (!periodic[axis]) return d;
-        T len = hi[axis] - lo[axis];
-        if (d > T(0.5) * len) return d - len;
-        if (d < T(-0.5) * len) return d + len;
-        return d;
+        const T len = hi[axis] - lo[axis];
+        return exasph::min_image(d, len, T(0.5) * len);
     }
 
     // Squared minimum-image distance between the boxes [alo, ahi] and [blo, bhi] (a point when
@@ -53,8 +61,8 @@ struct Box {
     }
 };
 
-// The minimum image of Box::min_image as branch-free selects with loop-invariant operands, for
-// neighbour loops that must vectorise; an open axis gets an infinite half-period (never wraps).
+// The minimum image of Box::min_image with loop-invariant operands, for neighbour loops that
+// must vectorise; an open axis gets an infinite half-period (never wraps).
 template <class T>
 struct PeriodicImage {
     T len[3], half[3];
@@ -64,10 +72,7 @@ struct PeriodicImage {
             half[d] = box.periodic[d] ? T(0.5) * len[d] : std::numeric_limits<T>::infinity();
         }
     }
-    EXASPH_HD T operator()(T d, int axis) const {
-        d = d > half[axis] ? d - len[axis] : d;
-        return d < -half[axis] ? d + len[axis] : d;
-    }
+    EXASPH_HD T operator()(T d, int axis) const { return min_image(d, len[axis], half[axis]); }
 };
 
 } // namespace exasph

@@ -41,7 +41,7 @@ TEST(DensityPairs, DispatchedLoopMatchesThePortableOne) {
                 ASSERT_NEAR(fast.k, ref.k, 1e-13 * std::abs(ref.k)) << a << " " << part.count;
                 ASSERT_NEAR(fast.dh, ref.dh, 1e-12 * std::abs(ref.k)) << a << " " << part.count;
                 ASSERT_EQ(fast.nc, ref.nc) << a << " " << part.count;
-#if defined(EXASPH_SIMD_PAIRS) && defined(__AVX512F__)
+#if defined(EXASPH_SIMD_LANES) && defined(__AVX512F__)
                 // The AVX2 lanes as well, which hosts without AVX-512 run.
                 const auto narrow =
                     simd::DensityPairs<simd::Avx2>(a, view, s.box, k.view()).sum(part);
@@ -102,7 +102,7 @@ TEST(IadPairs, DispatchedLoopMatchesThePortableOne) {
                 ASSERT_TRUE(same(iad_sums<true, false>(a, part, view, s.box, kb, kd),
                                  iad_sums_portable<true, false>(a, part, view, s.box, kb, kd), 9))
                     << a << " " << part.count;
-#if defined(EXASPH_SIMD_PAIRS) && defined(__AVX512F__)
+#if defined(EXASPH_SIMD_LANES) && defined(__AVX512F__)
                 // The AVX2 lanes as well, which hosts without AVX-512 run.
                 using Avx2Rho = simd::IadPairs<simd::Avx2, false, float>;
                 using Avx2K = simd::IadPairs<simd::Avx2, true, double>;
@@ -165,7 +165,7 @@ void dispatched_momentum_energy_matches_portable(const Dissipation<double>& diss
                 ASSERT_NEAR(f.az, r.az, 1e-14 * a_scale) << a << " " << part.count;
                 ASSERT_NEAR(f.du, r.du, 1e-14 * du_scale) << a << " " << part.count;
                 ASSERT_NEAR(f.vsig_max, r.vsig_max, 1e-13 * r.vsig_max) << a << " " << part.count;
-#if defined(EXASPH_SIMD_PAIRS) && defined(__AVX512F__)
+#if defined(EXASPH_SIMD_LANES) && defined(__AVX512F__)
                 // The AVX2 lanes as well, which hosts without AVX-512 run.
                 constexpr bool kLimited = kTerms == PairTerms::limited;
                 const auto n =

@@ -1,6 +1,7 @@
 #pragma once
-// The lanes of the pair loops written with intrinsics (sph/density_simd.hpp, iad_simd.hpp,
-// momentum_energy_simd.hpp): one source for two instruction sets, chosen by the build's target.
+// The lanes of the loops written with intrinsics (the pair loops sph/density_simd.hpp,
+// iad_simd.hpp, momentum_energy_simd.hpp; the neighbour search's tree/candidate_boxes.hpp and
+// tree/leaf_scan.hpp): one source for two instruction sets, chosen by the build's target.
 //   Avx2:   a step of 8 pairs, the kernel polynomials on 8 floats (__m256), everything else on
 //           two halves of 4 doubles (__m256d); masks are vectors of all-ones lanes.
 //   Avx512: a step of 16 pairs, 16 floats (__m512), two halves of 8 doubles (__m512d); masks
@@ -11,7 +12,7 @@
 // (-march=native on such a host; AVX-512 F where it has that too) and never in device code;
 // elsewhere the portable `omp simd` loops run.
 #if defined(__AVX2__) && defined(__FMA__) && !defined(__CUDA_ARCH__)
-#define EXASPH_SIMD_PAIRS 1
+#define EXASPH_SIMD_LANES 1
 #include <immintrin.h>
 
 #include <cstdint>
@@ -65,6 +66,10 @@ EXASPH_INLINE M4 operator&(M4 a, M4 b) {
 }
 EXASPH_INLINE bool any(M4 m) {
     return _mm256_movemask_pd(m.v) != 0;
+}
+// Lane k's flag as bit k.
+EXASPH_INLINE std::uint32_t bits(M4 m) {
+    return std::uint32_t(_mm256_movemask_pd(m.v));
 }
 EXASPH_INLINE D4 select(M4 m, D4 a) {
     return {_mm256_and_pd(m.v, a.v)};
@@ -140,6 +145,9 @@ EXASPH_INLINE M8 operator&(M8 a, M8 b) {
 }
 EXASPH_INLINE bool any(M8 m) {
     return m.v != 0;
+}
+EXASPH_INLINE std::uint32_t bits(M8 m) {
+    return m.v;
 }
 EXASPH_INLINE D8 select(M8 m, D8 a) {
     return {_mm512_maskz_mov_pd(m.v, a.v)};
