@@ -23,7 +23,8 @@ void local_extent(const ParticleSet<T>& ps, std::size_t n, SumMax* out) {
             hi = std::max(hi, double(c[i]));
         }
         out[d] = {0.0, hi};
-        out[3 + d] = {0.0, -lo};
+        out[3 + d].sum = 0.0;
+        out[3 + d].set_min(lo);
     }
 }
 
@@ -32,7 +33,7 @@ template <class T>
 void apply_extent(Box<T>& box, const SumMax* ext) {
     for (int d = 0; d < 3; ++d) {
         if (box.periodic[d]) continue;
-        double hi = ext[d].max, lo = -ext[3 + d].max;
+        double hi = ext[d].max, lo = ext[3 + d].min();
         double pad = 1e-6 * std::max(hi - lo, 1e-30) + 1e-300;
         box.lo[d] = T(lo - pad);
         box.hi[d] = T(hi + pad);

@@ -11,11 +11,15 @@ namespace exasph {
 
 // An element reduced with "sum" on its first member and "max" on its second. Reducing arrays of
 // SumMax in one MPI_Allreduce lets one collective carry counts (sum) together with bounds and
-// smoothing lengths (max; a minimum is sent negated). The user-defined MPI type keeps the two
-// members together, so MPI may segment the buffer without breaking the meaning of an element.
+// smoothing lengths (max) and minima (set_min, min(): the one place a minimum rides as the
+// maximum of its negation, which is exact). The user-defined MPI type keeps the two members
+// together, so MPI may segment the buffer without breaking the meaning of an element.
 struct SumMax {
     double sum = 0;
     double max = -std::numeric_limits<double>::infinity();
+
+    void set_min(double least) { max = -least; }
+    double min() const { return -max; }
 };
 
 namespace detail {

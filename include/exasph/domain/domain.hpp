@@ -1,7 +1,6 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
-#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -23,10 +22,24 @@
 namespace exasph {
 
 // Distributed domain (physics.md §11): the global top tree, the SFC-range assignment, migration,
-// halo discovery and halo exchange. After sync():
-//   owned particles [0, n_owned) in SFC order (ties by id), halos [n_owned, n_owned + n_halo)
-//   grouped by source rank, local_tree() over the owned, halo_tree() over the halos.
-// It moves whatever fields it is asked to (by role), and never names a physics field.
+// halo discovery and halo exchange; it moves the fields it is asked to (by role), never naming
+// one. Requires: every rank calls init() (or restore()) once, then its collectives
+// (count_particles) in the same order as the others; owned positions inside the box on its
+// periodic axes; h > 0.
+// The update sequence of a step (Simulation::sync_or_refresh):
+//   1. count_particles(): SFC keys, the global leaves' counts and maximum h (one collective,
+//      which may carry the run-control flags); nothing moves, so the caller may keep the state
+//      or stop here (a vote) without calling distribute();
+//   2. distribute(): the assignment of leaf ranges to ranks (by count or cost), migration, the
+//      SFC sort of the owned particles (with every carried field), the local tree and its
+//      bounds, halo discovery (with the skin when use_skin) and the exchange of the kHaloSync
+//      fields; the global tree refined for the next step;
+//   or, between syncs, refresh(): the trees' bounds of the moved particles and the kHaloSync
+//      fields along the last sync's halo lists (no collective).
+// sync() is 1 then 2. Guarantees after 2: owned particles [0, n_owned()) in SFC order (ties by
+// id), halos [n_owned(), n_owned() + n_halo()) grouped by source rank, local_tree() over the
+// owned, halo_tree() over the halos, every neighbour within 2 h (with the skin: plus the skin)
+// of an owned particle among them; after refresh(), the same lists with current bounds.
 template <class T>
 class Domain {
   public:
@@ -58,22 +71,16 @@ class Domain {
         tree_.set_keys(std::move(leaf_keys));
     }
 
-    // Migration, SFC sort, local tree, halo discovery and the exchange of the kHaloSync fields:
-    // count_particles() then distribute().
+    // Steps 1 and 2 of the update sequence.
     void sync(ParticleSet<T>& ps, const Box<T>& box) {
         count_particles(ps, box);
         distribute(ps, box);
     }
 
-    // The first half of the sync: the SFC keys and the one collective of the sync (the global
-    // tree counts and maximum h). Requires: the owned particles [0, n_owned()) with positions in
-    // `box` (halos are dropped). The collective also carries the run-control flags when given
-    // (every rank's raised flags are seen by all after it: ControlFlags), so that a rank's vote
-    // (e.g. corrupted state found before the step) needs no collective of its own. Guarantees:
-    // the particles are still where they were (a state that may be saved, or abandoned without
-    // calling distribute()) until distribute() moves them.
-    // With `cost` (one per owned particle, --balance cost) the collective also sums it per leaf
-    // and distribute() cuts the curve by cost (domain/cost_balance.hpp).
+    // Step 1 (halos are dropped). With `flags` the collective carries them (every rank's raised
+    // flags are seen by all after it), so a rank's vote needs no collective of its own; with
+    // `cost` (one per owned particle, --balance cost) it sums the cost per leaf and distribute()
+    // cuts the curve by cost (domain/cost_balance.hpp).
     void count_particles(ParticleSet<T>& ps, const Box<T>& box, ControlFlags* flags = nullptr,
                          const float* cost = nullptr) {
         ps.resize(n_owned_); // drop last step's halos
@@ -84,7 +91,7 @@ class Domain {
             reduce_leaf_counts(ps.data(Field::h), leaf_, tree_.num_leaves(), coll_, flags, cost);
     }
 
-    // The second half: migration, sort, local tree, halos.
+    // Step 2.
     void distribute(ParticleSet<T>& ps, const Box<T>& box) {
         const auto& counts = counts_.count;
         asg_ = counts_.cost.empty() ? assign_leaves(counts, coll_.size())
@@ -113,9 +120,8 @@ class Domain {
         tree_.refine(counts, bucket_for(counts)); // for the next step; counts belong to this tree
     }
 
-    // A step without a sync (--sync-every): the decomposition and the halo lists of the last
-    // sync stay; the trees keep their structure and take their particles' new bounds (the
-    // searches stay exact, their boxes only loosen), and the halos get the kHaloSync fields.
+    // The sequence's refresh (--sync-every): the trees keep their structure (the searches stay
+    // exact, their boxes only loosen).
     void refresh(ParticleSet<T>& ps) {
         coll_.record().start_step();
         local_tree_.update_bounds(ps.data(Field::x), ps.data(Field::y), ps.data(Field::z),

@@ -14,7 +14,7 @@ void pack_leaf_summary(const LeafSummary<T>& s, SumMax* b) {
     for (int d = 0; d < 3; ++d) {
         b[1 + d].sum = s.mp.com[d];
         b[d].max = s.hi[d];
-        b[3 + d].max = -double(s.lo[d]);
+        b[3 + d].set_min(double(s.lo[d]));
     }
     for (int k = 0; k < 6; ++k) b[4 + k].sum = s.mp.q[k];
     for (int k = 0; k < 10; ++k) b[10 + k].sum = s.mp.s[k];
@@ -31,7 +31,7 @@ LeafSummary<T> unpack_leaf_summary(const SumMax* b) {
     for (int d = 0; d < 3; ++d) {
         s.mp.com[d] = b[1 + d].sum;
         s.hi[d] = T(b[d].max);
-        s.lo[d] = T(-b[3 + d].max);
+        s.lo[d] = T(b[3 + d].min());
     }
     for (int k = 0; k < 6; ++k) s.mp.q[k] = b[4 + k].sum;
     for (int k = 0; k < 10; ++k) s.mp.s[k] = b[10 + k].sum;

@@ -152,7 +152,7 @@ class BlockClock {
         const auto [least, most] = own_step_extremes<L>(ps, n);
         std::vector<SumMax> e(2);
         e[0].max = most;
-        e[1].max = -least;
+        e[1].set_min(least);
         e[0].sum = inverse_limit_sum(ps, n);
         e[1].sum = double(n);
         dom.collectives().allreduce_sum_max(e);
@@ -162,7 +162,7 @@ class BlockClock {
         // of it within its own. (Anchored at the largest limit instead, the shortest step lies
         // between half the smallest limit and all of it: more sub-steps, and particles with
         // nearly equal limits split between two rungs.)
-        double len = -e[1].max;
+        double len = e[1].min();
         for (int k = 0; k < kMaxRung && len < e[0].max; ++k) len *= 2;
         t0_ = in.time;
         end_ = t0_ + len;

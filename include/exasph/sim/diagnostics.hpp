@@ -129,7 +129,8 @@ void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_
     }
     for (int k = 0; k < 8; ++k) out[k] = {s[k], -std::numeric_limits<double>::infinity()};
     out[8] = {s[8], nc_hi};
-    out[9] = {double(n_owned), -nc_lo};
+    out[9].sum = double(n_owned);
+    out[9].set_min(nc_lo);
     double ratio = n_owned > 0 ? double(n_halo) / double(n_owned) : 0.0;
     out[10] = {ratio, ratio};
     const T *xp = ps.data(Field::x_m1), *yp = ps.data(Field::y_m1), *zp = ps.data(Field::z_m1);
@@ -165,7 +166,7 @@ inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {
     d.n = std::uint64_t(e[9].sum);
     d.nc_mean = d.n > 0 ? e[8].sum / double(d.n) : 0.0;
     d.nc_max = e[8].max;
-    d.nc_min = -e[9].max;
+    d.nc_min = e[9].min();
     d.nranks = nranks;
     d.halo_ratio_mean = e[10].sum / nranks;
     d.halo_ratio_max = e[10].max;

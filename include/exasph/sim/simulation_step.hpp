@@ -45,8 +45,8 @@ bool Simulation<T, L>::sync_or_refresh() {
 
 template <class T, class L>
 void Simulation<T, L>::compute_forces() {
-    const HydroInputs<T> in{
-        box_, kernel_.view(), eos_, cfg_, gravity_ ? &*gravity_ : nullptr, clock_.step == 0};
+    const KernelView<T> k = kernel_.view(); // HydroInputs holds a reference to it
+    const HydroInputs<T> in{box_, k, eos_, cfg_, gravity_ ? &*gravity_ : nullptr, clock_.step == 0};
     courant_dt_ = hydro_forces<L>(ps_, nlists_, in, domain_, phase_ender(),
                                   store_results_in(blocks_ ? ps_.data(Field::dtc) : nullptr));
     if (!blocks_) nlists_.release(); // the sync can use their memory
@@ -100,8 +100,7 @@ void Simulation<T, L>::find_neighbours() {
 template <class T, class L>
 double Simulation<T, L>::choose_time_step() {
     const double accel = gravity_ ? cfg_.accel_eps : 0.0;
-    if (blocks_) { // closing and opening the steps updates the state (checked before:
-                   // SafetyNet)
+    if (blocks_) { // closing and opening steps updates the state (the net checked it first)
         const double dt =
             blocks_->choose(ps_, n_owned(), nlists_, domain_,
                             {clock_.step == 0, clock_.dt0, accel, clock_.time, clock_.t_end});
@@ -116,7 +115,7 @@ double Simulation<T, L>::choose_time_step() {
 template <class T, class L>
 void Simulation<T, L>::advance(double dt) {
     const double t_next = advance_state<L>(ps_, n_owned(), box_, blocks_ ? &*blocks_ : nullptr,
-                                           cfg_, dt, clock_.dt_m1, clock_.time, phase_ender());
+                                           cfg_, dt, clock_, phase_ender());
     if (stirring_) stirring_->advance(clock_.step, dt);
     clock_.stepped(dt, t_next);
     box_fresh_ = false, sched_.stepped();

@@ -17,11 +17,11 @@ namespace exasph {
 inline void reduce_step_votes(Collectives& coll, double& dt_min, double& skin_used,
                               ControlFlags& flags) {
     std::vector<SumMax> e(2 + kNumControlFlags);
-    e[0].max = -dt_min; // max(-a, -b) = -min(a, b) exactly
+    e[0].set_min(dt_min);
     e[1].max = skin_used;
     flags.pack(e.data() + 2);
     coll.allreduce_sum_max(e);
-    dt_min = -e[0].max;
+    dt_min = e[0].min();
     skin_used = e[1].max;
     flags.unpack(e.data() + 2);
 }
