@@ -33,7 +33,8 @@ if(EXASPH_CUDA)
   endif()
   find_package(CUDAToolkit REQUIRED)
   add_library(exasph_cuda STATIC src/cuda/runtime.cu src/cuda/device_lists.cu
-                                 src/cuda/passes.cu)
+                                 src/cuda/passes.cu
+                                 src/cuda/primitives.cu)
   set_target_properties(exasph_cuda PROPERTIES CUDA_STANDARD 20 CUDA_STANDARD_REQUIRED ON
                                                POSITION_INDEPENDENT_CODE ON)
   # Device-code warnings are errors; ptxas prints every kernel's registers, stack and spills

@@ -14,4 +14,11 @@ inline void check(cudaError_t e, const char* what) {
         throw Error(std::string("CUDA error while ") + what + ": " + cudaGetErrorString(e));
 }
 
+// The end of a launch: its launch error, then the device synchronised (the launchers' calls
+// return with their results visible to the host).
+inline void finish(const char* what) {
+    check(cudaGetLastError(), what);
+    check(cudaDeviceSynchronize(), what);
+}
+
 } // namespace exasph::cuda

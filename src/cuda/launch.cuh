@@ -111,11 +111,6 @@ class BlockResults {
     V* dev_ = nullptr;
 };
 
-inline void finish(const char* what) {
-    cuda::check(cudaGetLastError(), what);
-    cuda::check(cudaDeviceSynchronize(), what);
-}
-
 } // namespace cuda_detail
 
 template <class Kernel>
@@ -124,7 +119,7 @@ void CudaLauncher::for_each(std::size_t n, const Kernel& k) {
     if (n == 0) return;
     cuda_detail::particles<<<cuda_detail::blocks_for(n), cuda_detail::kThreads>>>(k,
                                                                                   std::uint32_t(n));
-    cuda_detail::finish("running a particle pass");
+    cuda::finish("running a particle pass");
 }
 
 template <class Kernel>
@@ -136,7 +131,7 @@ CudaLauncher::reduce(std::size_t n, const Kernel& k) {
     cuda_detail::BlockResults<R> results(blocks);
     cuda_detail::particles_reduce<<<blocks, cuda_detail::kThreads>>>(k, std::uint32_t(n),
                                                                      results.device());
-    cuda_detail::finish("running a particle reduction");
+    cuda::finish("running a particle reduction");
     return results.combined();
 }
 
@@ -146,7 +141,7 @@ void CudaLauncher::for_each_of(const std::uint32_t* idx, std::size_t n, const Ke
     if (n == 0) return;
     cuda_detail::particles_of<<<cuda_detail::blocks_for(n), cuda_detail::kThreads>>>(
         k, idx, std::uint32_t(n));
-    cuda_detail::finish("running a pass over the active particles");
+    cuda::finish("running a pass over the active particles");
 }
 
 template <class Kernel>
@@ -158,7 +153,7 @@ CudaLauncher::reduce_of(const std::uint32_t* idx, std::size_t n, const Kernel& k
     cuda_detail::BlockResults<R> results(blocks);
     cuda_detail::particles_of_reduce<<<blocks, cuda_detail::kThreads>>>(k, idx, std::uint32_t(n),
                                                                         results.device());
-    cuda_detail::finish("running a reduction over the active particles");
+    cuda::finish("running a reduction over the active particles");
     return results.combined();
 }
 
@@ -174,14 +169,14 @@ CudaLauncher::for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k) 
         cuda_detail::neighbourhoods<<<blocks, cuda_detail::kThreads>>>(
             k, nl.index(), nl.offset(), nl.count(), nl.member(), std::uint32_t(n),
             results.device());
-        cuda_detail::finish("running a neighbour pass");
+        cuda::finish("running a neighbour pass");
         return results.combined();
     } else {
         if (n == 0) return;
         cuda_detail::neighbourhoods<<<blocks, cuda_detail::kThreads>>>(
             k, nl.index(), nl.offset(), nl.count(), nl.member(), std::uint32_t(n),
             static_cast<char*>(nullptr));
-        cuda_detail::finish("running a neighbour pass");
+        cuda::finish("running a neighbour pass");
     }
 }
 

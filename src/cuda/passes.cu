@@ -15,65 +15,38 @@
 namespace exasph {
 namespace cuda_detail {
 
+// How a listed kernel is launched: the lists of sph/pass_kernels.hpp.
+enum class Launch { each, each_of, reduce, reduce_of, neighbours };
+
+// The launcher's function for kernel K launched as `how`.
+template <Launch how, class K>
+constexpr auto launcher_function() {
+    if constexpr (how == Launch::each) return &CudaLauncher::for_each<K>;
+    if constexpr (how == Launch::each_of) return &CudaLauncher::for_each_of<K>;
+    if constexpr (how == Launch::reduce) return &CudaLauncher::reduce<K>;
+    if constexpr (how == Launch::reduce_of) return &CudaLauncher::reduce_of<K>;
+    if constexpr (how == Launch::neighbours)
+        return &CudaLauncher::for_each_neighbourhood<double, K>;
+}
+
 // The launcher's function for every kernel of a list, by address in a static member of an
 // explicitly instantiated class: each function is then compiled and emitted here.
-template <class List>
-struct EachInstances;
-template <class... K>
-struct EachInstances<KernelList<K...>> {
-    static const std::tuple<void (*)(std::size_t, const K&)...> table;
+template <Launch how, class List>
+struct Instances;
+template <Launch how, class... K>
+struct Instances<how, KernelList<K...>> {
+    static const std::tuple<decltype(launcher_function<how, K>())...> table;
 };
-template <class... K>
-const std::tuple<void (*)(std::size_t, const K&)...> EachInstances<KernelList<K...>>::table{
-    &CudaLauncher::for_each<K>...};
-
-template <class List>
-struct EachOfInstances;
-template <class... K>
-struct EachOfInstances<KernelList<K...>> {
-    static const std::tuple<void (*)(const std::uint32_t*, std::size_t, const K&)...> table;
-};
-template <class... K>
-const std::tuple<void (*)(const std::uint32_t*, std::size_t, const K&)...>
-    EachOfInstances<KernelList<K...>>::table{&CudaLauncher::for_each_of<K>...};
-
-template <class List>
-struct ReduceInstances;
-template <class... K>
-struct ReduceInstances<KernelList<K...>> {
-    static const std::tuple<ResultOf<K> (*)(std::size_t, const K&)...> table;
-};
-template <class... K>
-const std::tuple<ResultOf<K> (*)(std::size_t, const K&)...>
-    ReduceInstances<KernelList<K...>>::table{&CudaLauncher::reduce<K>...};
-
-template <class List>
-struct ReduceOfInstances;
-template <class... K>
-struct ReduceOfInstances<KernelList<K...>> {
-    static const std::tuple<ResultOf<K> (*)(const std::uint32_t*, std::size_t, const K&)...> table;
-};
-template <class... K>
-const std::tuple<ResultOf<K> (*)(const std::uint32_t*, std::size_t, const K&)...>
-    ReduceOfInstances<KernelList<K...>>::table{&CudaLauncher::reduce_of<K>...};
-
-template <class List>
-struct NeighbourInstances;
-template <class... K>
-struct NeighbourInstances<KernelList<K...>> {
-    static const std::tuple<ResultOf<K> (*)(const DeviceLists<double>&, const K&)...> table;
-};
-template <class... K>
-const std::tuple<ResultOf<K> (*)(const DeviceLists<double>&, const K&)...>
-    NeighbourInstances<KernelList<K...>>::table{
-        &CudaLauncher::for_each_neighbourhood<double, K>...};
+template <Launch how, class... K>
+const std::tuple<decltype(launcher_function<how, K>())...> Instances<how, KernelList<K...>>::table{
+    launcher_function<how, K>()...};
 
 using Listed = CudaLauncher::Listed;
-template struct EachInstances<Listed::each>;
-template struct EachOfInstances<Listed::each_of>;
-template struct ReduceInstances<Listed::reduce>;
-template struct ReduceOfInstances<Listed::reduce_of>;
-template struct NeighbourInstances<Listed::neighbours>;
+template struct Instances<Launch::each, Listed::each>;
+template struct Instances<Launch::each_of, Listed::each_of>;
+template struct Instances<Launch::reduce, Listed::reduce>;
+template struct Instances<Launch::reduce_of, Listed::reduce_of>;
+template struct Instances<Launch::neighbours, Listed::neighbours>;
 
 // Every pass of sph/passes.hpp and sph/block_passes.hpp once on the CUDA launcher, as the step
 // calls it (never run): a pass whose kernel is not in the list fails CudaLauncher's constraint

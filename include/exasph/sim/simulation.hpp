@@ -199,7 +199,7 @@ class Simulation {
     SafetyNet<T> safety_;
     PhaseTimer<kNumPhases> timer_;
     Diagnostics diag_, before_; // before_: the last step's, for the watchdog
-    StepOutcome outcome_;       // what the step in progress brings to the net's verdict
+    bool advanced_ = false;     // the step in progress has updated the state
     bool safety_on_ = false;    // --on-sdc other than off: the watchdog compares steps
     double mass0_ = 0;
     StepClock clock_;

@@ -15,7 +15,7 @@ void Simulation<T, L>::begin_step() {
     if (start.corrupt) flags_.raise(kCorruptBefore);
     point_pending_ |= start.point_due;     // block steps: waits for a block's end
     if (point_pending_) sched_.ask_sync(); // a rollback point follows a sync's vote
-    outcome_ = {clock_.step, false, false, nullptr, nullptr, mass0_, !gravity_ && !stirring_};
+    advanced_ = false;
 }
 
 template <class T, class L>
@@ -66,17 +66,21 @@ void Simulation<T, L>::advance_and_diagnose(double dt) {
         clock_.ends(cfg_.steps) || flags_[kStopRequested] || flags_[kCheckpointByClock];
     summed_ = sched_.diagnose_due(clock_.step, safety_on_, forced);
     diagnose(dt, summed_);
-    const bool consecutive = summed_ && before_.step + 1 == diag_.step; // for the watchdog
-    outcome_.step = clock_.step;
-    outcome_.before = consecutive ? &before_ : nullptr;
-    outcome_.now = &diag_;
+    advanced_ = true;
 }
 
 template <class T, class L>
 void Simulation<T, L>::conclude() {
-    outcome_.corrupt_before = flags_[kCorruptBefore];
-    outcome_.state_changed = flags_[kStateChanged];
-    if (const RunPoint<T>* point = safety_.conclude(ps_, n_owned(), outcome_)) {
+    // The watchdog compares two sums only when they are of consecutive steps.
+    const bool consecutive = advanced_ && summed_ && before_.step + 1 == diag_.step;
+    const StepOutcome outcome{.step = clock_.step,
+                              .corrupt_before = flags_[kCorruptBefore],
+                              .state_changed = flags_[kStateChanged],
+                              .before = consecutive ? &before_ : nullptr,
+                              .now = advanced_ ? &diag_ : nullptr,
+                              .mass0 = mass0_,
+                              .check_momentum = !gravity_ && !stirring_};
+    if (const RunPoint<T>* point = safety_.conclude(ps_, n_owned(), outcome)) {
         box_ = point->box, box_fresh_ = true;
         diag_ = point->diag;
         sched_.ask_sync(); // the halos and trees belong to the state left behind

@@ -40,6 +40,17 @@ struct CudaLauncher {
     template <class T, class Kernel>
     requires kListed<Kernel, Listed::neighbours>
     static ResultOf<Kernel> for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k);
+
+    // The primitives of sph/primitives.hpp (CUB's scan and radix sort; src/cuda/primitives.cu
+    // instantiates them for every PrimitiveScalar and SortKey).
+    template <PrimitiveScalar V>
+    static V exclusive_scan(const V* in, V* out, std::size_t n);
+    template <SortKey K>
+    static void sort_by_key(K* keys, ParticleIndex* order, std::size_t n);
+    template <PrimitiveScalar V>
+    static void gather(const ParticleIndex* from, const V* in, V* out, std::size_t n);
+    template <PrimitiveScalar V>
+    static void scatter(const ParticleIndex* to, const V* in, V* out, std::size_t n);
 };
 
 template <>

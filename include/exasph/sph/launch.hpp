@@ -12,6 +12,7 @@
 #include <omp.h>
 #endif
 
+#include "exasph/sph/primitives.hpp"
 #include "exasph/sph/reduction.hpp"
 
 // Launchers: how a per-particle kernel runs over the particles. A kernel is a functor with an
@@ -22,6 +23,7 @@
 //   reduce(n, k), reduce_of(idx, n, k)           the same, returning the kernel's reduction
 //   for_each_neighbourhood(lists, k)             k(i, neighbours) for every list, returning the
 //                                                reduction when the kernel has one
+// and the data-parallel primitives of sph/primitives.hpp (scan, sort by key, gather, scatter).
 // Requires: a kernel writes only its own particle's slots (calls run in any order, in parallel).
 // Guarantees: every call has returned (and its writes are visible to the host) when the
 // launcher returns; min, max and first-index results do not depend on the order of the calls.
@@ -58,8 +60,8 @@ typename R::value_type reduce_over_threads(const Part& part) {
 #endif
 }
 
-// Particle-wise kernels on the OpenMP threads of this rank (static schedule).
-struct OmpParticleLoops {
+// Particle-wise kernels and the primitives on the OpenMP threads of this rank (static schedule).
+struct OmpParticleLoops : OmpPrimitives {
     template <class Kernel>
     static void for_each(std::size_t n, const Kernel& k) {
         const auto nn = static_cast<std::int64_t>(n);

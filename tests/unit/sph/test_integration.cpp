@@ -1,6 +1,8 @@
 // Time integration and smoothing-length update (physics.md §2, 7).
 #include <cmath>
 
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "exasph/sph/av_switch.hpp"
@@ -52,6 +54,18 @@ TEST(TimeStep, CourantAndGrowthLimit) {
     EXPECT_DOUBLE_EQ(courant_time_step(1.0, 0.0, 5.0, 0.2), 0.2);
     EXPECT_DOUBLE_EQ(limit_time_step(1.0, 0.5), 0.55);
     EXPECT_DOUBLE_EQ(limit_time_step(0.3, 0.5), 0.3);
+}
+
+// A particle without a limit gives +infinity (the minimum's identity), in float as in double,
+// and never decides the step: the growth cap does.
+TEST(TimeStep, NoLimitIsInfinityAndNeverDecides) {
+    EXPECT_EQ(courant_time_step(1.0, 0.0, 0.0, 0.2), std::numeric_limits<double>::infinity());
+    EXPECT_EQ(courant_time_step(1.0f, 0.0f, 0.0f, 0.2f), std::numeric_limits<float>::infinity());
+    EXPECT_EQ(acceleration_time_step(1.0, 0.0, 0.0, 0.0, 0.2),
+              std::numeric_limits<double>::infinity());
+    EXPECT_EQ(energy_time_step(1.0, 0.5, 0.3), std::numeric_limits<double>::infinity());
+    EXPECT_DOUBLE_EQ(energy_time_step(1.0, -0.5, 0.3), 0.6);
+    EXPECT_DOUBLE_EQ(limit_time_step(courant_time_step(1.0, 0.0, 0.0, 0.2), 0.5), 0.55);
 }
 
 TEST(AvSwitch, RisesUnderCompressionAndDecaysWithout) {
