@@ -60,16 +60,19 @@ void write_rows(const Group& g, const std::string& name, hid_t memtype, hid_t fi
     if (st < 0) fail_write(g, "cannot write dataset " + where(g, name));
 }
 
+// Rows [offset, offset + count) of a dataset of rows of `width` values (1: a 1-D dataset), read
+// collectively by every rank.
 template <class V>
-std::vector<V> read_1d(const Group& g, const std::string& name, hid_t memtype, std::uint64_t offset,
-                       std::uint64_t count) {
+std::vector<V> read_rows(const Group& g, const std::string& name, hid_t memtype,
+                         std::uint64_t offset, std::uint64_t count, std::uint64_t width = 1) {
     hid_t dset = H5Dopen2(g.id(), name.c_str(), H5P_DEFAULT);
     if (dset < 0) fail(g.file().path(), "missing dataset " + where(g, name), 2);
     hid_t fspace = H5Dget_space(dset);
-    hsize_t start[1] = {offset}, cnt[1] = {count};
+    const int rank = width > 1 ? 2 : 1;
+    hsize_t start[2] = {offset, 0}, cnt[2] = {count, width};
     H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
-    hid_t mspace = H5Screate_simple(1, cnt, nullptr);
-    std::vector<V> out(count);
+    hid_t mspace = H5Screate_simple(rank, cnt, nullptr);
+    std::vector<V> out(count * width);
     hid_t dxpl = collective_transfer();
     herr_t st = H5Dread(dset, memtype, mspace, fspace, dxpl, out.data());
     H5Pclose(dxpl);
@@ -196,7 +199,8 @@ void write_u64(const Group& g, const std::string& name, const std::uint64_t* dat
     write_rows(g, name, H5T_NATIVE_UINT64, H5T_STD_U64LE, data, count, offset, n_global);
 }
 
-std::uint64_t dataset_length(const Group& g, const std::string& name, bool integer) {
+std::uint64_t dataset_rows(const Group& g, const std::string& name, std::uint64_t width,
+                           bool integer) {
     if (!has_link(g, name)) fail(g.file().path(), "missing dataset " + where(g, name), 2);
     hid_t dset = H5Dopen2(g.id(), name.c_str(), H5P_DEFAULT);
     if (dset < 0) fail(g.file().path(), "cannot open dataset " + where(g, name), 2);
@@ -209,10 +213,13 @@ std::uint64_t dataset_length(const Group& g, const std::string& name, bool integ
     if (rank > 0 && rank <= 8) H5Sget_simple_extent_dims(space, dims, nullptr);
     H5Sclose(space);
     H5Dclose(dset);
-    if (rank != 1)
+    const int want = width > 1 ? 2 : 1;
+    if (rank != want || (width > 1 && dims[1] != width))
         fail(g.file().path(),
-             "dataset " + where(g, name) + " must be 1-D, has " + std::to_string(rank) +
-                 " dimensions",
+             "dataset " + where(g, name) + " must be " +
+                 (width > 1 ? "N x " + std::to_string(width) : std::string("1-D")) + ", has " +
+                 std::to_string(rank) + " dimensions" +
+                 (rank == 2 ? " (N x " + std::to_string(dims[1]) + ")" : ""),
              2);
     if (integer ? cls != H5T_INTEGER : cls != H5T_FLOAT)
         fail(g.file().path(),
@@ -222,13 +229,22 @@ std::uint64_t dataset_length(const Group& g, const std::string& name, bool integ
     return dims[0];
 }
 
+std::uint64_t dataset_length(const Group& g, const std::string& name, bool integer) {
+    return dataset_rows(g, name, 1, integer);
+}
+
 std::vector<double> read_doubles(const Group& g, const std::string& name, std::uint64_t offset,
                                  std::uint64_t count) {
-    return read_1d<double>(g, name, H5T_NATIVE_DOUBLE, offset, count);
+    return read_rows<double>(g, name, H5T_NATIVE_DOUBLE, offset, count);
 }
 std::vector<std::uint64_t> read_u64(const Group& g, const std::string& name, std::uint64_t offset,
                                     std::uint64_t count) {
-    return read_1d<std::uint64_t>(g, name, H5T_NATIVE_UINT64, offset, count);
+    return read_rows<std::uint64_t>(g, name, H5T_NATIVE_UINT64, offset, count);
+}
+
+std::vector<double> read_double_rows(const Group& g, const std::string& name, std::uint64_t offset,
+                                     std::uint64_t count, std::uint64_t width) {
+    return read_rows<double>(g, name, H5T_NATIVE_DOUBLE, offset, count, width);
 }
 
 } // namespace exasph::h5

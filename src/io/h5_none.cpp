@@ -56,6 +56,13 @@ void write_double_rows(const Group& g, const std::string&, const double*, std::u
                        std::uint64_t, std::uint64_t, std::uint64_t) {
     no_hdf5(g.file().path(), 3);
 }
+std::uint64_t dataset_rows(const Group& g, const std::string&, std::uint64_t, bool) {
+    no_hdf5(g.file().path(), 2);
+}
+std::vector<double> read_double_rows(const Group& g, const std::string&, std::uint64_t,
+                                     std::uint64_t, std::uint64_t) {
+    no_hdf5(g.file().path(), 2);
+}
 std::uint64_t dataset_length(const Group& g, const std::string&, bool) {
     no_hdf5(g.file().path(), 2);
 }

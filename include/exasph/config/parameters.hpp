@@ -17,8 +17,9 @@ namespace exasph {
 // clang-format off
 inline const std::array kParameters{
     // Initial conditions
-    Param{"--init", "init", "Initial conditions: a test case or an HDF5 file *.h5 "
-          "(docs/file-format.md)", "", OnRestart::kept, &Config::init},
+    Param{"--init", "init", "Initial conditions: a test case, or an HDF5 file *.h5 or *.hdf5 in "
+          "exasph's layout or the GADGET layout of other codes (gas only; docs/file-format.md)",
+          "", OnRestart::kept, &Config::init},
     Param{"-n", "side", "Particles per axis (about n^3 particles)", "", OnRestart::kept,
           &Config::side, in_range(2, 1000)},
     Param{"--param", "case_params", "Case parameter KEY=VALUE (repeatable; the keys of each case "

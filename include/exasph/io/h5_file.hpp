@@ -79,10 +79,16 @@ void write_double_rows(const Group& g, const std::string& name, const double* da
 // Length of a 1-D floating-point (or, with integer = true, integer) dataset; throws Error (exit 2)
 // naming the dataset when it is missing, not 1-D or of the wrong type.
 std::uint64_t dataset_length(const Group& g, const std::string& name, bool integer = false);
+// Rows of a dataset of N rows of `width` values (N x width; width 1: 1-D), checked likewise.
+std::uint64_t dataset_rows(const Group& g, const std::string& name, std::uint64_t width,
+                           bool integer = false);
 std::vector<double> read_doubles(const Group& g, const std::string& name, std::uint64_t offset,
                                  std::uint64_t count);
 std::vector<std::uint64_t> read_u64(const Group& g, const std::string& name, std::uint64_t offset,
                                     std::uint64_t count);
+// Rows [offset, offset + count) of an N x width dataset, row after row.
+std::vector<double> read_double_rows(const Group& g, const std::string& name, std::uint64_t offset,
+                                     std::uint64_t count, std::uint64_t width);
 
 // Attributes (written by every rank with identical values; HDF5 stores them once).
 void write_attribute(const Group& g, const std::string& name, double v);

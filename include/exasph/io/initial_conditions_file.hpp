@@ -5,6 +5,7 @@
 #include "exasph/util/mpi.hpp"
 
 #include "exasph/cases/initial_conditions.hpp"
+#include "exasph/io/gadget_ic.hpp"
 #include "exasph/io/h5_file.hpp"
 #include "exasph/io/particle_io.hpp"
 #include "exasph/io/root_attributes.hpp"
@@ -33,12 +34,18 @@ inline std::string particle_group_name(const h5::Group& root) {
     return best < 0 ? "/" : "/Step#" + std::to_string(best);
 }
 
-// Initial conditions from an HDF5 file in the layout of docs/file-format.md; every rank reads
-// its share. Ideal-gas EOS with the file's gamma.
+// Initial conditions from an HDF5 file in the layout of docs/file-format.md, or in the GADGET
+// layout of other codes (io/gadget_ic.hpp: h from ng0 neighbours where the file has none); every
+// rank reads its share. Ideal-gas EOS with the file's gamma.
 template <class T>
-InitialConditions<T> read_initial_conditions(const std::string& path, MPI_Comm comm) {
+InitialConditions<T> read_initial_conditions(const std::string& path, MPI_Comm comm,
+                                             double ng0 = 100) {
     h5::File file = h5::File::open_read(path, comm);
     h5::Group root(file, "/", false);
+    if (is_gadget_layout(root)) return read_gadget_initial_conditions<T>(file, comm, ng0);
+    if (h5::has_link(root, "PartType0"))
+        throw input_error(path + ": a GADGET-layout file (it has /PartType0) needs a /Header group",
+                          true);
     InitialConditions<T> ic;
     ic.name = path;
     ic.box = read_box<T>(root);

@@ -52,7 +52,7 @@ inline InitialConditions<double> make_case(const Config& cfg, MPI_Comm comm = MP
             throw input_error("--param " + cfg.case_params.front() +
                                   ": initial conditions from a file take no case parameters",
                               true);
-        return read_initial_conditions<double>(cfg.init, comm);
+        return read_initial_conditions<double>(cfg.init, comm, cfg.ng0);
     }
     const CaseInfo* c = find_case(cfg.init);
     if (!c)
