@@ -94,27 +94,24 @@ struct GasRows {
     std::vector<std::uint64_t> id;
 };
 
-// A 1-D dataset of the gas, checked to have n rows; empty when optional and absent.
-inline std::vector<double> column(const h5::Group& gas, const std::string& name, std::uint64_t n,
-                                  std::uint64_t lo, std::uint64_t count, bool required) {
-    if (!required && !h5::has_link(gas, name)) return {};
-    const std::uint64_t rows = h5::dataset_rows(gas, name, 1);
+// Rows of a gas dataset of N x width values (width 1: 1-D), checked to number n.
+inline void expect_rows(const h5::Group& gas, const std::string& name, std::uint64_t width,
+                        std::uint64_t n, bool integer = false) {
+    const std::uint64_t rows = h5::dataset_rows(gas, name, width, integer);
     if (rows != n)
         throw input_error(gas.file().path() + ": /PartType0/" + name + " has " +
                           std::to_string(rows) + " rows, /Header/NumPart_Total[0] says " +
                           std::to_string(n));
-    return h5::read_doubles(gas, name, lo, count);
 }
 
-inline std::vector<double> vectors(const h5::Group& gas, const std::string& name, std::uint64_t n,
-                                   std::uint64_t lo, std::uint64_t count, bool required) {
-    if (!required && !h5::has_link(gas, name)) return std::vector<double>(3 * count, 0.0);
-    const std::uint64_t rows = h5::dataset_rows(gas, name, 3);
-    if (rows != n)
-        throw input_error(gas.file().path() + ": /PartType0/" + name + " has " +
-                          std::to_string(rows) + " rows, /Header/NumPart_Total[0] says " +
-                          std::to_string(n));
-    return h5::read_double_rows(gas, name, lo, count, 3);
+// This rank's rows [lo, lo + count) of a gas dataset of n rows of `width` values; empty when
+// optional and absent.
+inline std::vector<double> read_gas(const h5::Group& gas, const std::string& name,
+                                    std::uint64_t width, std::uint64_t n, std::uint64_t lo,
+                                    std::uint64_t count, bool required) {
+    if (!required && !h5::has_link(gas, name)) return {};
+    expect_rows(gas, name, width, n);
+    return h5::read_double_rows(gas, name, lo, count, width);
 }
 
 template <class T>
@@ -157,17 +154,17 @@ InitialConditions<T> read_gadget_initial_conditions(const h5::File& file, MPI_Co
     const std::uint64_t count = n * std::uint64_t(rank + 1) / std::uint64_t(nranks) - lo;
 
     gadget::GasRows r;
-    r.pos = gadget::vectors(gas, "Coordinates", n, lo, count, true);
-    r.vel = gadget::vectors(gas, "Velocities", n, lo, count, false);
-    r.u = gadget::column(gas, "InternalEnergy", n, lo, count, true);
+    r.pos = gadget::read_gas(gas, "Coordinates", 3, n, lo, count, true);
+    r.vel = gadget::read_gas(gas, "Velocities", 3, n, lo, count, false);
+    if (r.vel.empty()) r.vel.assign(3 * count, 0.0); // at rest
+    r.u = gadget::read_gas(gas, "InternalEnergy", 1, n, lo, count, true);
     const double table_mass = gadget::six(header, "MassTable")[0];
     r.m = table_mass > 0 ? std::vector<double>(count, table_mass)
-                         : gadget::column(gas, "Masses", n, lo, count, true);
-    r.h = gadget::column(gas, "SmoothingLength", n, lo, count, false);
-    if (r.h.empty()) r.rho = gadget::column(gas, "Density", n, lo, count, false);
+                         : gadget::read_gas(gas, "Masses", 1, n, lo, count, true);
+    r.h = gadget::read_gas(gas, "SmoothingLength", 1, n, lo, count, false);
+    if (r.h.empty()) r.rho = gadget::read_gas(gas, "Density", 1, n, lo, count, false);
     if (h5::has_link(gas, "ParticleIDs")) {
-        if (h5::dataset_rows(gas, "ParticleIDs", 1, true) != n)
-            throw input_error(path + ": /PartType0/ParticleIDs has a different count of rows");
+        gadget::expect_rows(gas, "ParticleIDs", 1, n, true);
         r.id = h5::read_u64(gas, "ParticleIDs", lo, count);
     }
     const double volume = double(ic.box.hi[0]) * double(ic.box.hi[1]) * double(ic.box.hi[2]);
