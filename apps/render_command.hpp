@@ -28,7 +28,9 @@ inline void add_render_command(CLI::App& app, RenderCommand& rc) {
     sub->add_option("snapshot", rc.snapshot, "Snapshot file (snapshot_SSSSSS.h5)")
         ->required()
         ->check(CLI::ExistingFile);
-    sub->add_option("--field", rc.spec.field, "Field to draw (a dataset of the snapshot)")
+    sub->add_option(
+           "--field", rc.spec.field,
+           "Field to draw, by exasph's name (rho, u, vx, h, p, ...; a field the snapshot holds)")
         ->capture_default_str();
     sub->add_flag("--project", rc.spec.project, "Integrate along the axis instead of slicing");
     sub->add_option("--axis", rc.axis, "Slice normal or line of sight")

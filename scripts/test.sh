@@ -21,7 +21,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 single_rank=ON # build/ builds and runs the single-rank tests unless build-serial/ runs them
 [ $# -eq 0 ] && [ -z "${EXASPH_SKIP_SERIAL:-}" ] && single_rank=OFF
-EXASPH_TEST_PACKAGES="python3-paraview xvfb python3-pip libmpich-dev mpich universal-ctags" \
+EXASPH_TEST_PACKAGES="python3-paraview python3-yt xvfb python3-pip libmpich-dev mpich universal-ctags" \
     EXASPH_CONFIGURE_ARGS="-DEXASPH_SINGLE_RANK_TESTS=$single_rank -UEXASPH_CUDA -DEXASPH_WERROR=ON" \
     bash "$root/scripts/setup.sh"
 full="${EXASPH_BUILD_DIR:-$root/build}"

@@ -36,20 +36,16 @@ for _group in (("x", "y", "z"), ("x_m1", "y_m1", "z_m1"), ("vx", "vy", "vz"), ("
 
 
 def load(path):
+    """Ids and fields (exasph's names) of a snapshot (either format version), checkpoint or
+    initial-conditions file, in id order."""
     try:
-        f = h5py.File(path, "r")
-    except OSError as exc:
-        fail(f"{path}: cannot open ({exc})")
-    try:
-        g = exasph.particle_group(f)
-    except exasph.ExasphFileError:
-        g = f["/"]
-    if "id" not in g:
-        fail(f"{path}: no dataset 'id' in {g.name}")
-    ids = g["id"][()]
-    order = np.argsort(ids)
-    data = {k: g[k][()][order] for k in g.keys() if k != "id" and g[k].ndim == 1}
-    return ids[order], data
+        s = exasph.load_snapshot(path)
+    except exasph.ExasphFileError as exc:
+        fail(str(exc))
+    if s.id is None:
+        fail(f"{path}: no particle ids")
+    order = np.argsort(s.id)
+    return s.id[order], {k: v[order] for k, v in s.fields.items()}
 
 
 def main():

@@ -7,6 +7,7 @@ diagnostics table, radial profiles, and the exact solutions that `exasph exact` 
     r, rho, n = exasph.radial_profile(s.radius(), s.fields["rho"], bins=100, rmax=0.5)
     ex = exasph.exact_solution("sedov", s.time, gamma=s.gamma)  # ex["r"], ex["rho"], ...
     m = exasph.load_comm_matrix("run", "halo")                # ranks x ranks, bytes per step
+    ds = exasph.yt_load("run/snapshot_000100.h5")             # yt dataset (needs yt 4.x)
 
 Errors in the files raise ExasphFileError with one line naming the file and the problem.
 """
@@ -16,7 +17,8 @@ from .errors import ExasphFileError
 from .exact import exact_solution, find_exasph
 from .profiles import binned_mean, radial_profile
 from .snapshot import Snapshot, load_snapshot, particle_group
+from .yt_support import yt_load
 
 __all__ = ["ExasphFileError", "Snapshot", "binned_mean", "exact_solution", "find_exasph",
            "load_comm_matrix", "load_diagnostics", "load_snapshot", "particle_group",
-           "radial_profile"]
+           "radial_profile", "yt_load"]

@@ -1,4 +1,9 @@
-"""Snapshots (H5Part layout: group Step#N, one 1-D dataset per field) and checkpoints (/state)."""
+"""Snapshots and checkpoints (/state). Snapshots of format version 2 (root attribute
+format_version) are in the GADGET layout: /Header and the gas in /PartType0, vectors as N x 3
+(Coordinates, Velocities, Acceleration), scalars under GADGET names (Masses, InternalEnergy,
+SmoothingLength = 2h, Density, Pressure, Potential) or exasph's (du, nc, ...), ids in ParticleIDs.
+Version 1 (no format_version) had group Step#N with one 1-D dataset per field. Both read into the
+same Snapshot, keyed by exasph's field names; GADGET-layout files of other codes read too."""
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -18,12 +23,37 @@ def _open(path):
         raise ExasphFileError(f"{path}: not a readable HDF5 file ({exc})") from None
 
 
+# GADGET-layout datasets that hold exasph fields: name -> (the fields, in columns; stored scale).
+# SmoothingLength is GADGET's kernel support radius, 2h (include/exasph/io/gadget_layout.hpp).
+GADGET_DATASETS = {
+    "Coordinates": (("x", "y", "z"), 1.0),
+    "Velocities": (("vx", "vy", "vz"), 1.0),
+    "Acceleration": (("ax", "ay", "az"), 1.0),
+    "Masses": (("m",), 1.0),
+    "InternalEnergy": (("u",), 1.0),
+    "SmoothingLength": (("h",), 2.0),
+    "Density": (("rho",), 1.0),
+    "Pressure": (("p",), 1.0),
+    "Potential": (("phi",), 1.0),
+}
+
+
+def is_gadget_layout(f):
+    """A file in the GADGET layout (format version 2 snapshots, other codes' files)."""
+    return "Header" in f and "PartType0" in f
+
+
 def particle_group(f, step=None):
-    """The /state group of a checkpoint, else the group Step#`step` of a snapshot (the last one
-    when step is None)."""
+    """The /state group of a checkpoint, /PartType0 of a GADGET-layout file, else the group
+    Step#`step` of a version-1 snapshot (the last one when step is None), else the root of an
+    initial-conditions file."""
     if "state" in f:
         return f["state"]
+    if is_gadget_layout(f):
+        return f["PartType0"]
     steps = sorted((int(k[5:]) for k in f.keys() if k.startswith("Step#")))
+    if not steps and "x" in f:
+        return f["/"]
     if not steps:
         raise ExasphFileError(f"{f.filename}: no Step#N group (not an exasph snapshot)")
     if step is None:
@@ -91,12 +121,56 @@ class Snapshot:
         return self
 
 
+def _gadget_columns(g):
+    """{exasph field: (dataset, column, scale)} of a /PartType0 group."""
+    out = {}
+    for name in g.keys():
+        if name == "ParticleIDs":
+            continue
+        names, scale = GADGET_DATASETS.get(name, ((name,), 1.0))
+        for col, field_name in enumerate(names):
+            out[field_name] = (name, col, scale)
+    return out
+
+
+def _load_gadget(f, path, step, fields):
+    g, header = f["PartType0"], f["Header"]
+    columns = _gadget_columns(g)
+    if step is not None and int(header.attrs.get("step", -1)) != step:
+        raise ExasphFileError(f"{path}: no step {step} (step: {int(header.attrs.get('step', -1))})")
+    names = list(columns)
+    if fields is not None:
+        wanted = set(fields) | {"x", "y", "z"}
+        missing = sorted(wanted - set(names))
+        if missing:
+            raise ExasphFileError(f"{path}: no datasets {', '.join(missing)} in {g.name}")
+        names = [k for k in names if k in wanted]
+    data, units, read = {}, {}, {}
+    for k in names:
+        dataset, col, scale = columns[k]
+        if dataset not in read:
+            read[dataset] = np.asarray(g[dataset][()], dtype=float)
+        v = read[dataset]
+        data[k] = (v[:, col] if v.ndim == 2 else v) / scale
+        if f"unit:{dataset}" in g.attrs:
+            units[k] = _attribute(g.attrs[f"unit:{dataset}"])
+    attrs = {k: _attribute(v) for k, v in f.attrs.items()}
+    ids = np.asarray(g["ParticleIDs"][()], dtype=np.uint64) if "ParticleIDs" in g else None
+    return Snapshot(str(path), int(header.attrs.get("step", -1)),
+                    float(header.attrs.get("Time", 0.0)), float(header.attrs.get("dt", 0.0)),
+                    data, units, attrs, ids)
+
+
 def load_snapshot(path, step=None, fields=None):
-    """The particles of a snapshot (its last step, or `step`) or of a checkpoint; `fields`
-    limits the datasets read (x, y, z are always read)."""
+    """The particles of a snapshot (its last step, or `step`), of a checkpoint or of an
+    initial-conditions file, in either snapshot format version; `fields` limits the fields read
+    (x, y, z are always read)."""
     with _open(path) as f:
+        if is_gadget_layout(f):
+            return _load_gadget(f, path, step, fields)
         g = particle_group(f, step)
-        names = [k for k in g.keys() if g[k].ndim == 1 and k != "id"]
+        names = [k for k in g.keys() if getattr(g[k], "ndim", 0) == 1
+                 and k != "id"]
         if fields is not None:
             wanted = set(fields) | {"x", "y", "z"}
             missing = sorted(wanted - set(names))
@@ -113,3 +187,4 @@ def load_snapshot(path, step=None, fields=None):
         step_no = int(g.attrs.get("step", -1)) if "step" in g.attrs else -1
         return Snapshot(str(path), step_no, float(g.attrs.get("time", f.attrs.get("time", 0.0))),
                         float(g.attrs.get("dt", 0.0)), data, units, attrs, ids)
+

@@ -8,7 +8,7 @@ which runs exasph, then itself in `pvpython` with --check on an Xvfb display of 
 A 2-rank Sedov run writes three snapshots; ParaView (Debian's python3-paraview) opens one
 snapshot with each of its XDMF readers and the run's time series (snapshots.xdmf), and every
 point count, field name, field range and time value is checked against h5py; a PNG of the
-points coloured by rho is rendered off-screen and must show more than the background; the
+points coloured by Density is rendered off-screen and must show more than the background; the
 grid that `exasph render` writes opens as an image holding the HDF5 grid's values.
 Exits non-zero on failure.
 """
@@ -35,7 +35,7 @@ if "--check" in sys.argv:  # the half that runs in pvpython
         "Xdmf3 Reader S": lambda f: Xdmf3ReaderS(FileName=[f]),
         "Xdmf3 Reader T": lambda f: Xdmf3ReaderT(FileName=[f]),
     }
-SKIP = {"x", "y", "z", "xyz", "id"}  # positions are the points; id is not a field
+SKIP = {"Coordinates", "ParticleIDs"}  # positions are the points; ids are not a field
 
 
 def points(reader, time=None):
@@ -51,10 +51,10 @@ def points(reader, time=None):
 
 def expected(h5_path, step):
     with h5py.File(h5_path, "r") as f:
-        g = f[f"Step#{step}"]
+        g = f["PartType0"]
+        assert f["Header"].attrs["step"] == step
         fields = {k: g[k][()] for k in g.keys() if k not in SKIP}
-        xyz = np.stack([g["x"][()], g["y"][()], g["z"][()]], axis=1)
-        return float(g.attrs["time"]), fields, xyz
+        return float(f["Header"].attrs["Time"]), fields, g["Coordinates"][()]
 
 
 def check_same(what, n, arrays, pts, fields, xyz):
@@ -73,7 +73,7 @@ def render(reader, png):
     view = CreateView("RenderView")
     view.ViewSize = [480, 360]
     shown = Show(reader, view)
-    ColorBy(shown, ("POINTS", "rho"))
+    ColorBy(shown, ("POINTS", "Density"))
     shown.SetScalarBarVisibility(view, True)
     ResetCamera(view)
     SaveScreenshot(str(png), view, ImageResolution=[480, 360])

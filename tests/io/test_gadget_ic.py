@@ -3,7 +3,8 @@
 
 The files are written here with h5py from the layout's documentation (a /Header group with
 NumPart_Total, NumPart_Total_HighWord, MassTable, BoxSize, Time; /PartType0 with Coordinates and
-Velocities as N x 3, Masses, InternalEnergy, SmoothingLength, ParticleIDs), not by exasph.
+Velocities as N x 3, Masses, InternalEnergy, SmoothingLength (GADGET's h: the kernel's support
+radius, 2h in exasph's notation), ParticleIDs), not by exasph.
 - Sedov from such a file (the built-in case's particles, moved into [0, 1)) equals, after 5
   steps, on 1 and 2 ranks, with derived fields in double: the same particles in exasph's own
   layout to 1e-12 of each field's scale, and the built-in Sedov to 1e-12 in every field but the
@@ -25,6 +26,9 @@ import tempfile
 
 import h5py
 import numpy as np
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "python"))
+import exasph  # noqa: E402
 
 SIDE = 10
 STEPS = 5
@@ -65,7 +69,7 @@ def write_gadget(path, s, mass_table=False, smoothing=True, mutate=None):
     if not mass_table:
         data["Masses"] = s["m"]
     if smoothing:
-        data["SmoothingLength"] = s["h"]
+        data["SmoothingLength"] = 2 * s["h"]  # GADGET's h: the kernel's support radius
     header = {"NumPart_Total": np.array([n, 0, 0, 0, 0, 0], dtype=np.uint32),
               "NumPart_ThisFile": np.array([n, 0, 0, 0, 0, 0], dtype=np.int32),
               "NumPart_Total_HighWord": np.zeros(6, dtype=np.uint32),
@@ -86,10 +90,9 @@ def write_gadget(path, s, mass_table=False, smoothing=True, mutate=None):
 
 def particles(snapshot, step, shift=0.0):
     """Fields of a snapshot by particle id, positions moved back by `shift`."""
-    with h5py.File(snapshot, "r") as f:
-        g = f[f"Step#{step}"]
-        order = np.argsort(g["id"][()])
-        out = {k: g[k][()][order] for k in ("x", "y", "z", "vx", "vy", "vz", "u", "h", "rho")}
+    snap = exasph.load_snapshot(snapshot, step=step)
+    order = np.argsort(snap.id)
+    out = {k: snap.fields[k][order] for k in ("x", "y", "z", "vx", "vy", "vz", "u", "h", "rho")}
     for k in "xyz":
         out[k] = out[k] - shift
         out[k] -= np.round(out[k])  # the periodic image in [-0.5, 0.5]

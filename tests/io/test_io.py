@@ -206,18 +206,26 @@ def test_snapshot(r):
     assert h5.exists() and (out / "snapshot_000003.h5").exists()
     assert not list(out.glob("*.tmp")), "temporary files left behind"
     with h5py.File(h5, "r") as f:
-        g = f["Step#6"]
-        fields = {"x", "y", "z", "rho", "vx", "vy", "vz", "u", "h", "m", "p", "id"}
-        assert set(g.keys()) == fields | {"xyz"}, sorted(g.keys())
-        for k in fields:
-            assert g[k].shape == (1728,), (k, g[k].shape)
-        # The positions once more as rows, for ParaView's Xdmf3 readers.
-        xyz = np.stack([g["x"][()], g["y"][()], g["z"][()]], axis=1)
-        assert np.array_equal(g["xyz"][()], xyz)
-        assert g.attrs["step"] == 6 and g.attrs["numParticles"] == 1728
-        assert g.attrs["time"] > 0 and g.attrs["dt"] > 0
-        assert sorted(g["id"][()]) == list(range(1728)), "ids not a permutation"
-        assert np.all(g["rho"][()] > 0.5) and np.all(np.isfinite(g["p"][()]))
+        assert f.attrs["format_version"] == 2
+        g, header = f["PartType0"], f["Header"]
+        # GADGET layout: vectors N x 3 (written whole), scalars under their GADGET names.
+        shapes = {"Coordinates": (1728, 3), "Velocities": (1728, 3), "Density": (1728,),
+                  "InternalEnergy": (1728,), "SmoothingLength": (1728,), "Masses": (1728,),
+                  "Pressure": (1728,), "ParticleIDs": (1728,)}
+        assert {k: g[k].shape for k in g.keys()} == shapes, {k: g[k].shape for k in g.keys()}
+        assert g["ParticleIDs"].dtype == np.uint64
+        assert list(header.attrs["NumPart_Total"]) == [1728, 0, 0, 0, 0, 0]
+        assert list(header.attrs["NumPart_ThisFile"]) == [1728, 0, 0, 0, 0, 0]
+        assert list(header.attrs["MassTable"]) == [0.0] * 6
+        assert header.attrs["NumFilesPerSnapshot"] == 1 and header.attrs["step"] == 6
+        assert header.attrs["Time"] > 0 and header.attrs["dt"] > 0
+        box = np.asarray(f.attrs["box_hi"]) - np.asarray(f.attrs["box_lo"])
+        assert np.allclose(np.atleast_1d(header.attrs["BoxSize"]), box)
+        # The run is in cgs: the unit scales are stated as GADGET states them.
+        assert header.attrs["UnitLength_in_cm"] == 1.0 and header.attrs["UnitMass_in_g"] == 1.0
+        assert sorted(g["ParticleIDs"][()]) == list(range(1728)), "ids not a permutation"
+        assert np.all(g["Density"][()] > 0.5) and np.all(np.isfinite(g["Pressure"][()]))
+        assert g.attrs["unit:Density"] == "mass/length^3"
         for a in ("code_version", "units", "box_lo", "box_hi", "periodic", "gamma",
                   "param:ng0", "param:kernel_exponent", "param:courant", "param:alpha"):
             assert a in f.attrs, a
@@ -237,12 +245,15 @@ def test_snapshot(r):
             assert dset in f, dset
             assert item.get("Dimensions") == " ".join(map(str, f[dset].shape)), item.attrib
             names.add(dset.split("/")[-1])
-    assert names == {"xyz", "rho", "vx", "vy", "vz", "u", "h", "m", "p"}, names
+    assert names == {"Coordinates", "Density", "Velocities", "InternalEnergy", "SmoothingLength",
+                     "Masses", "Pressure"}, names
     assert root.find(".//Topology").get("NumberOfElements") == "1728"
     info = {i.get("Name"): i.get("Value") for i in root.find(".//Grid").findall("Information")}
     assert info.get("scheme") == "wc" and "cgs" in info.get("units", ""), info
     units = {a.get("Name"): a.find("Information").get("Value") for a in root.iter("Attribute")}
-    assert units["rho"] == "mass/length^3" and units["vx"] == "length/time", units
+    assert units["Density"] == "mass/length^3" and units["Velocities"] == "length/time", units
+    kinds = {a.get("Name"): a.get("AttributeType") for a in root.iter("Attribute")}
+    assert kinds["Velocities"] == "Vector" and kinds["Density"] == "Scalar", kinds
     check_time_series(out, [3, 6])
     # A run restarted from step 3 in the same folder: its series stops where the run is.
     again = r.work / "series"
@@ -267,7 +278,7 @@ def check_time_series(out, steps):
         files = {item.text.strip().split(":")[0] for item in grid.iter("DataItem")}
         assert files == {name}, files
         with h5py.File(out / name, "r") as f:
-            t = f[f"Step#{step}"].attrs["time"]
+            t = f["Header"].attrs["Time"]
         assert float(grid.find("Time").get("Value")) == t, (step, t)
     assert not list(out.glob("*.tmp")), "temporary files left behind"
 

@@ -40,8 +40,9 @@ def main():
                         "-w", "20", "--out", w / "run"], check=True, capture_output=True)
         import h5py
         with h5py.File(w / "run" / "snapshot_000020.h5", "r") as f:
-            g = f["Step#20"]
-            assert "phi" in g and float(g["phi"][:].max()) < 0, "no potential in the snapshot"
+            g = f["PartType0"]
+            assert "Potential" in g and float(g["Potential"][:].max()) < 0, \
+                "no potential in the snapshot"
             assert float(f.attrs["param:G"]) == 1.0
         png = w / "energies.png"
         ref = w / "ref.csv"

@@ -9,6 +9,7 @@
 
 #include "exasph/cases/initial_conditions.hpp"
 #include "exasph/cases/initial_h.hpp"
+#include "exasph/io/gadget_layout.hpp"
 #include "exasph/io/h5_file.hpp"
 #include "exasph/io/particle_io.hpp"
 #include "exasph/util/error.hpp"
@@ -123,15 +124,25 @@ void refuse_negative_energy(const ParticleSet<T>& ps, const std::string& path) {
                               " must not be negative, is " + std::to_string(u[i]));
 }
 
+// The run attributes of a file from another code: ideal gas with gamma = 5/3 (the layout does
+// not store it) in the periodic box of BoxSize; the first time step 1e-6.
+template <class T>
+InitialConditions<T> run_attributes(const h5::Group& header) {
+    InitialConditions<T> ic;
+    ic.name = header.file().path();
+    ic.box = periodic_box<T>(header);
+    ic.eos = {EosKind::ideal_gas, 5.0 / 3.0, 0.0};
+    return ic;
+}
+
 } // namespace gadget
 
-// Gas initial conditions from a GADGET-layout file; every rank reads its share of the rows.
-// Masses from MassTable[0] when it is positive, else from Masses; h from SmoothingLength, else
-// ng0 neighbours at the particle's Density, else at the box's mean density (the run's first
-// steps then adjust h). Ideal gas with gamma = 5/3 (the layout does not store it).
+// The gas of a GADGET-layout file into `ic` (whose box and dt0 are set); every rank reads its
+// share of the rows. Masses from MassTable[0] when it is positive, else from Masses; h from
+// SmoothingLength (the kernel support radius 2h), else ng0 neighbours at the particle's Density,
+// else at the box's mean density (the run's first steps then adjust h).
 template <class T>
-InitialConditions<T> read_gadget_initial_conditions(const h5::File& file, MPI_Comm comm,
-                                                    double ng0) {
+void read_gadget_gas(const h5::File& file, MPI_Comm comm, double ng0, InitialConditions<T>& ic) {
     const std::string& path = file.path();
     h5::Group header(file, "/Header", false), gas(file, "/PartType0", false);
     const auto files = h5::has_attribute(header, "NumFilesPerSnapshot")
@@ -142,38 +153,37 @@ InitialConditions<T> read_gadget_initial_conditions(const h5::File& file, MPI_Co
                                  "1): join them into one file first");
     const auto counts = gadget::particle_counts(header);
     gadget::refuse_other_types(counts, path);
-    InitialConditions<T> ic;
-    ic.name = path;
-    ic.box = gadget::periodic_box<T>(header);
-    ic.eos = {EosKind::ideal_gas, 5.0 / 3.0, 0.0};
     const std::uint64_t n = counts[0];
     int rank = 0, nranks = 1;
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &nranks);
     const std::uint64_t lo = n * std::uint64_t(rank) / std::uint64_t(nranks);
     const std::uint64_t count = n * std::uint64_t(rank + 1) / std::uint64_t(nranks) - lo;
+    auto name = [](Field f) { return gadget_column(f).dataset.name; };
 
     gadget::GasRows r;
-    r.pos = gadget::read_gas(gas, "Coordinates", 3, n, lo, count, true);
-    r.vel = gadget::read_gas(gas, "Velocities", 3, n, lo, count, false);
+    r.pos = gadget::read_gas(gas, name(Field::x), 3, n, lo, count, true);
+    r.vel = gadget::read_gas(gas, name(Field::vx), 3, n, lo, count, false);
     if (r.vel.empty()) r.vel.assign(3 * count, 0.0); // at rest
-    r.u = gadget::read_gas(gas, "InternalEnergy", 1, n, lo, count, true);
+    r.u = gadget::read_gas(gas, name(Field::u), 1, n, lo, count, true);
     const double table_mass = gadget::six(header, "MassTable")[0];
     r.m = table_mass > 0 ? std::vector<double>(count, table_mass)
-                         : gadget::read_gas(gas, "Masses", 1, n, lo, count, true);
-    r.h = gadget::read_gas(gas, "SmoothingLength", 1, n, lo, count, false);
-    if (r.h.empty()) r.rho = gadget::read_gas(gas, "Density", 1, n, lo, count, false);
-    if (h5::has_link(gas, "ParticleIDs")) {
-        gadget::expect_rows(gas, "ParticleIDs", 1, n, true);
-        r.id = h5::read_u64(gas, "ParticleIDs", lo, count);
+                         : gadget::read_gas(gas, name(Field::m), 1, n, lo, count, true);
+    r.h = gadget::read_gas(gas, name(Field::h), 1, n, lo, count, false);
+    if (r.h.empty()) r.rho = gadget::read_gas(gas, name(Field::rho), 1, n, lo, count, false);
+    if (h5::has_link(gas, kGadgetIds)) {
+        gadget::expect_rows(gas, kGadgetIds, 1, n, true);
+        r.id = h5::read_u64(gas, kGadgetIds, lo, count);
     }
-    const double volume = double(ic.box.hi[0]) * double(ic.box.hi[1]) * double(ic.box.hi[2]);
+    const double support = gadget_column(Field::h).dataset.scale; // SmoothingLength / h
+    double volume = 1;
+    for (int d = 0; d < 3; ++d) volume *= double(ic.box.hi[d]) - double(ic.box.lo[d]);
     auto& ps = ic.particles;
     ps.resize(count);
     for (std::size_t s = 0; s < count; ++s) {
         const double spacing =
             !r.rho.empty() ? std::cbrt(r.m[s] / r.rho[s]) : std::cbrt(volume / double(n));
-        const double h = r.h.empty() ? initial_smoothing_length(spacing, ng0) : r.h[s];
+        const double h = r.h.empty() ? initial_smoothing_length(spacing, ng0) : r.h[s] / support;
         const double pos[3] = {r.pos[3 * s], r.pos[3 * s + 1], r.pos[3 * s + 2]};
         const double vel[3] = {r.vel[3 * s], r.vel[3 * s + 1], r.vel[3 * s + 2]};
         set_particle(ps, s, r.id.empty() ? lo + s : r.id[s], pos, vel, ic.dt0, h, r.m[s], r.u[s]);
@@ -182,7 +192,6 @@ InitialConditions<T> read_gadget_initial_conditions(const h5::File& file, MPI_Co
         validate_input_particles(ps, path, ic.box);
         gadget::refuse_negative_energy(ps, path); // an ideal gas (other layouts may hold any EOS)
     });
-    return ic;
 }
 
 } // namespace exasph

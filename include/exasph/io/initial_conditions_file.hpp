@@ -34,18 +34,11 @@ inline std::string particle_group_name(const h5::Group& root) {
     return best < 0 ? "/" : "/Step#" + std::to_string(best);
 }
 
-// Initial conditions from an HDF5 file in the layout of docs/file-format.md, or in the GADGET
-// layout of other codes (io/gadget_ic.hpp: h from ng0 neighbours where the file has none); every
-// rank reads its share. Ideal-gas EOS with the file's gamma.
+// The run attributes exasph writes on a file's root (box, ideal-gas gamma, dt0, t_end, units),
+// as the start of initial conditions read from it.
 template <class T>
-InitialConditions<T> read_initial_conditions(const std::string& path, MPI_Comm comm,
-                                             double ng0 = 100) {
-    h5::File file = h5::File::open_read(path, comm);
-    h5::Group root(file, "/", false);
-    if (is_gadget_layout(root)) return read_gadget_initial_conditions<T>(file, comm, ng0);
-    if (h5::has_link(root, "PartType0"))
-        throw input_error(path + ": a GADGET-layout file (it has /PartType0) needs a /Header group",
-                          true);
+InitialConditions<T> own_run_attributes(const h5::Group& root) {
+    const std::string& path = root.file().path();
     InitialConditions<T> ic;
     ic.name = path;
     ic.box = read_box<T>(root);
@@ -58,7 +51,33 @@ InitialConditions<T> read_initial_conditions(const std::string& path, MPI_Comm c
     if (!(ic.dt0 > 0)) throw input_error(path + ": attribute /dt0 must be positive");
     ic.t_end = read_finite(root, "t_end", 0.0);
     if (h5::has_attribute(root, "units")) ic.units = h5::read_attribute_string(root, "units");
+    return ic;
+}
 
+// Was the file written by exasph (its run attributes on the root)?
+inline bool written_by_exasph(const h5::Group& root) {
+    return h5::has_attribute(root, "box_lo");
+}
+
+// Initial conditions from an HDF5 file in the layout of docs/file-format.md, or in the GADGET
+// layout of other codes and of exasph's snapshots (io/gadget_ic.hpp: h from ng0 neighbours where
+// the file has none); every rank reads its share. Ideal-gas EOS with the file's gamma.
+template <class T>
+InitialConditions<T> read_initial_conditions(const std::string& path, MPI_Comm comm,
+                                             double ng0 = 100) {
+    h5::File file = h5::File::open_read(path, comm);
+    h5::Group root(file, "/", false);
+    if (is_gadget_layout(root)) {
+        InitialConditions<T> ic =
+            written_by_exasph(root) ? own_run_attributes<T>(root)
+                                    : gadget::run_attributes<T>(h5::Group(file, "/Header", false));
+        read_gadget_gas(file, comm, ng0, ic);
+        return ic;
+    }
+    if (h5::has_link(root, "PartType0"))
+        throw input_error(path + ": a GADGET-layout file (it has /PartType0) needs a /Header group",
+                          true);
+    InitialConditions<T> ic = own_run_attributes<T>(root);
     h5::Group data(file, particle_group_name(root), false);
     auto& ps = ic.particles;
     read_particle_fields(data, ps, {Field::x, Field::y, Field::z, Field::m, Field::h},

@@ -6,6 +6,7 @@
 
 #include "exasph/util/mpi.hpp"
 
+#include "exasph/io/gadget_layout.hpp"
 #include "exasph/io/h5_file.hpp"
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/util/box.hpp"
@@ -43,17 +44,29 @@ std::uint64_t write_particle_fields(const h5::Group& g, const ParticleSet<T>& ps
     return n_global;
 }
 
-// The positions once more as one N x 3 dataset "xyz": ParaView's Xdmf3 readers take points
-// only from such an array (they read no X_Y_Z geometry of three 1-D datasets).
+// Writes the GADGET-layout datasets `sets` (io/gadget_layout.hpp: N x 3 for vectors, stored
+// times their scale) and the ids (ParticleIDs) of particles [0, n_local); every rank writes its
+// own rows (collective, no gather). Returns the global count.
 template <class T>
-void write_position_rows(const h5::Group& g, const ParticleSet<T>& ps, std::size_t n_local,
-                         MPI_Comm comm) {
+std::uint64_t write_gadget_datasets(const h5::Group& gas, const ParticleSet<T>& ps,
+                                    std::size_t n_local, const std::vector<GadgetDataset>& sets,
+                                    MPI_Comm comm) {
     std::uint64_t n_global = 0;
     const std::uint64_t offset = global_offset(n_local, comm, n_global);
-    std::vector<double> xyz(3 * n_local);
-    for (std::size_t i = 0; i < n_local; ++i)
-        for (int d = 0; d < 3; ++d) xyz[3 * i + d] = ps.value(component(Field::x, d), i);
-    h5::write_double_rows(g, "xyz", xyz.data(), n_local, 3, offset, n_global);
+    std::vector<double> buf;
+    for (const GadgetDataset& d : sets) {
+        const auto width = std::size_t(d.width);
+        buf.resize(width * n_local);
+        for (std::size_t i = 0; i < n_local; ++i)
+            for (std::size_t c = 0; c < width; ++c)
+                buf[i * width + c] = ps.value(component(d.first, int(c)), i) * d.scale;
+        if (width == 1)
+            h5::write_doubles(gas, d.name, buf.data(), n_local, offset, n_global);
+        else
+            h5::write_double_rows(gas, d.name, buf.data(), n_local, width, offset, n_global);
+    }
+    h5::write_u64(gas, kGadgetIds, ps.id.data(), n_local, offset, n_global);
+    return n_global;
 }
 
 // Rank r of P reads elements [N r / P, N (r+1) / P) of each dataset: any rank count reads any

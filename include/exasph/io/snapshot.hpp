@@ -73,32 +73,60 @@ inline std::string numbered_path(const std::string& dir, const char* stem, std::
     return (std::filesystem::path(dir) / name).string();
 }
 
-// Snapshot in the H5Part layout: group Step#N holding one 1-D dataset per field (all ranks write
-// their owned particles collectively, no gather), with time/step/dt attributes, run attributes
-// on the root, and an XDMF sidecar. Written under a temporary name, renamed when complete.
+// The snapshot format's version (root attribute format_version): 2 is the GADGET layout;
+// version 1 (no attribute) held group Step#N with one 1-D dataset per field.
+inline constexpr std::int64_t kSnapshotFormatVersion = 2;
+
+// /Header as GADGET-layout readers (yt, GADGET tools) need it: gas counts, MassTable of zeros
+// (masses per particle), Time, BoxSize (one number for a cube, else one per axis), one file;
+// and exasph's step and dt. Runs in cgs also state their unit scales, as GADGET does.
+template <class T>
+void write_gadget_header(const h5::Group& header, std::uint64_t n, const OutputState<T>& run,
+                         const std::string& units) {
+    const std::vector<std::int64_t> gas_count = {std::int64_t(n), 0, 0, 0, 0, 0};
+    h5::write_attribute(header, "NumPart_ThisFile", gas_count);
+    h5::write_attribute(header, "NumPart_Total", gas_count);
+    h5::write_attribute(header, "NumPart_Total_HighWord", std::vector<std::int64_t>(6, 0));
+    h5::write_attribute(header, "MassTable", std::vector<double>(6, 0.0));
+    h5::write_attribute(header, "Time", run.restart.time);
+    h5::write_attribute(header, "Redshift", 0.0);
+    h5::write_attribute(header, "NumFilesPerSnapshot", std::int64_t(1));
+    h5::write_attribute(header, "Flag_DoublePrecision", std::int64_t(1));
+    std::vector<double> side(3);
+    for (int d = 0; d < 3; ++d) side[d] = double(run.box.hi[d]) - double(run.box.lo[d]);
+    const bool cube = side[0] == side[1] && side[1] == side[2];
+    h5::write_attribute(header, "BoxSize", cube ? std::vector<double>{side[0]} : side);
+    h5::write_attribute(header, "step", std::int64_t(run.restart.step));
+    h5::write_attribute(header, "dt", run.dt);
+    if (units.rfind("cgs", 0) == 0)
+        for (const char* scale :
+             {"UnitLength_in_cm", "UnitMass_in_g", "UnitVelocity_in_cm_per_s", "UnitTime_in_s"})
+            h5::write_attribute(header, scale, 1.0);
+}
+
+// Snapshot in the GADGET layout (docs/file-format.md): /Header, and the gas datasets of the
+// chosen fields in /PartType0 (all ranks write their owned particles collectively, no gather)
+// with unit:NAME attributes; run attributes on the root; an XDMF sidecar on the same datasets.
+// Written under a temporary name, renamed when complete.
 template <class T>
 std::string write_snapshot(const OutputState<T>& run, const Config& cfg, const std::string& units,
                            const std::vector<Field>& fields, MPI_Comm comm) {
     const std::int64_t step = run.restart.step;
     const std::string path = numbered_path(cfg.out_dir, "snapshot", step, ".h5");
-    const std::string group = "/Step#" + std::to_string(step);
+    const std::string group = "/PartType0";
+    const std::vector<GadgetDataset> sets = gadget_datasets(fields);
     std::uint64_t n = 0;
     try {
         h5::File file = h5::File::create(temporary_name(path), comm);
         h5::Group root(file, "/", false);
         write_run_attributes(root, cfg, run.box, run.eos, units);
         h5::write_attribute(root, "dt0", run.dt > 0 ? run.dt : run.dt0);
-        h5::Group g(file, group, true);
-        h5::write_attribute(g, "time", run.restart.time);
-        h5::write_attribute(g, "step", std::int64_t(step));
-        h5::write_attribute(g, "dt", run.dt);
-        n = write_particle_fields(g, run.particles, run.n_owned, fields, true, comm);
-        write_position_rows(g, run.particles, run.n_owned, comm);
-        h5::write_attribute(g, "unit:xyz", std::string("length"));
-        h5::write_attribute(g, "numParticles", std::int64_t(n));
-        for (Field f : fields)
-            h5::write_attribute(g, "unit:" + std::string(field_info(f).name),
-                                std::string(field_info(f).unit));
+        h5::write_attribute(root, "format_version", kSnapshotFormatVersion);
+        h5::Group gas(file, group, true);
+        n = write_gadget_datasets(gas, run.particles, run.n_owned, sets, comm);
+        for (const GadgetDataset& d : sets)
+            h5::write_attribute(gas, "unit:" + d.name, std::string(field_info(d.first).unit));
+        write_gadget_header(h5::Group(file, "/Header", true), n, run, units);
     } catch (...) {
         discard_output(path, comm);
         throw;
@@ -108,14 +136,15 @@ std::string write_snapshot(const OutputState<T>& run, const Config& cfg, const s
     MPI_Comm_rank(comm, &rank);
     if (rank == 0) {
         std::vector<XdmfField> xfields;
-        for (Field f : fields)
-            xfields.push_back({std::string(field_info(f).name), std::string(field_info(f).unit)});
+        for (const GadgetDataset& d : sets)
+            xfields.push_back({d.name, std::string(field_info(d.first).unit), d.width});
         const XdmfInformation info = {{"scheme", std::string(choice_name(cfg.scheme))},
                                       {"units", units}};
         const std::string xdmf = numbered_path(cfg.out_dir, "snapshot", step, ".xdmf");
         write_text_file_atomically(
             xdmf, xdmf_document(xdmf_grid(std::filesystem::path(path).filename().string(), group, n,
-                                          run.restart.time, xfields, info)));
+                                          run.restart.time, gadget_column(Field::x).dataset.name,
+                                          xfields, info)));
         write_xdmf_time_series(cfg.out_dir, step);
     }
     return path;

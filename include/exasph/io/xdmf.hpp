@@ -18,9 +18,11 @@ namespace exasph {
 // snapshot (snapshot_NNNNNN.xdmf) and the run's time series (snapshots.xdmf), a temporal
 // collection of the sidecars' grids that ParaView animates.
 
+// A dataset of the grid: `width` values per point (1: a scalar, 3: a vector).
 struct XdmfField {
     std::string name;
     std::string unit;
+    int width = 1;
 };
 
 // What a grid says about its run beyond the fields (XDMF Information elements: the scheme, the
@@ -57,13 +59,14 @@ inline std::string xdmf_information(const std::string& indent, const std::string
 }
 
 // One snapshot's points as an XDMF Grid element: `h5_name` is the snapshot's file name relative
-// to the XDMF file, `group` the HDF5 group holding the N x 3 positions xyz and 1-D double
-// datasets of the fields.
+// to the XDMF file, `group` the HDF5 group holding the fields, `geometry` the N x 3 positions
+// among them (the points; not repeated as an attribute).
 inline std::string xdmf_grid(const std::string& h5_name, const std::string& group, std::uint64_t n,
-                             double time, const std::vector<XdmfField>& fields,
-                             const XdmfInformation& info) {
-    auto item = [&](const std::string& name) {
-        return "        <DataItem Dimensions=\"" + std::to_string(n) +
+                             double time, const std::string& geometry,
+                             const std::vector<XdmfField>& fields, const XdmfInformation& info) {
+    auto item = [&](const std::string& name, int width) {
+        const std::string dims = std::to_string(n) + (width > 1 ? " " + std::to_string(width) : "");
+        return "        <DataItem Dimensions=\"" + dims +
                "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + h5_name + ":" + group +
                "/" + name + "</DataItem>\n";
     };
@@ -74,15 +77,14 @@ inline std::string xdmf_grid(const std::string& h5_name, const std::string& grou
     for (const auto& [name, value] : info) s += xdmf_information("      ", name, value);
     s += "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(n) +
          "\" NodesPerElement=\"1\"/>\n";
-    // Points from the N x 3 dataset xyz: both ParaView readers (XDMF and Xdmf3) take XYZ.
-    s += "      <Geometry GeometryType=\"XYZ\">\n        <DataItem Dimensions=\"" +
-         std::to_string(n) + " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + h5_name +
-         ":" + group + "/xyz</DataItem>\n      </Geometry>\n";
+    // ParaView's readers (XDMF and Xdmf3) take points from one N x 3 dataset (XYZ).
+    s += "      <Geometry GeometryType=\"XYZ\">\n" + item(geometry, 3) + "      </Geometry>\n";
     for (const auto& f : fields) {
-        if (f.name == "x" || f.name == "y" || f.name == "z") continue;
-        s += "      <Attribute Name=\"" + f.name + "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
+        if (f.name == geometry) continue;
+        s += "      <Attribute Name=\"" + f.name + "\" AttributeType=\"" +
+             (f.width == 3 ? "Vector" : "Scalar") + "\" Center=\"Node\">\n";
         if (!f.unit.empty()) s += xdmf_information("        ", "unit", f.unit);
-        s += item(f.name) + "      </Attribute>\n";
+        s += item(f.name, f.width) + "      </Attribute>\n";
     }
     return s + "    </Grid>\n";
 }

@@ -9,8 +9,8 @@
 #include "exasph/util/mpi.hpp"
 
 #include "exasph/io/h5_file.hpp"
-#include "exasph/io/initial_conditions_file.hpp"
 #include "exasph/io/root_attributes.hpp"
+#include "exasph/io/snapshot_reader.hpp"
 #include "exasph/render/splat.hpp"
 
 namespace exasph {
@@ -24,8 +24,8 @@ struct RenderParticles {
     int kernel_exponent = 6; // the run's sinc exponent (param:kernel_exponent)
 };
 
-// Reads positions, h, m, rho and `field` of the last Step#N group of `path`: rank r of P reads
-// particles [N r / P, N (r + 1) / P). A missing field is one line naming it (exit 2).
+// Reads positions, h, m, rho and `field` of a snapshot (either format version): rank r of P
+// reads particles [N r / P, N (r + 1) / P). A missing field is one line naming it (exit 2).
 inline RenderParticles read_render_particles(const std::string& path, const std::string& field,
                                              MPI_Comm comm) {
     h5::File file = h5::File::open_read(path, comm);
@@ -34,20 +34,19 @@ inline RenderParticles read_render_particles(const std::string& path, const std:
     out.box = read_box<double>(root);
     if (h5::has_attribute(root, "param:kernel_exponent"))
         out.kernel_exponent = int(h5::read_attribute_doubles(root, "param:kernel_exponent").at(0));
-    h5::Group g(file, particle_group_name(root), false);
+    const SnapshotParticles snap(file, root);
     for (const std::string& name : std::vector<std::string>{"x", "y", "z", "h", "m", "rho", field})
-        if (!h5::has_link(g, name))
-            throw input_error(path + ": no dataset " + name + " in " + particle_group_name(root) +
+        if (snap.dataset(name).empty())
+            throw input_error(path + ": no field " + name + " in " + snap.group() +
                               (name == field ? "" : " (the renderer needs x, y, z, h, m, rho)"));
-    if (h5::has_attribute(g, "time")) out.time = h5::read_attribute_doubles(g, "time").at(0);
-    if (h5::has_attribute(g, "unit:" + field))
-        out.unit = h5::read_attribute_string(g, "unit:" + field);
+    out.time = snap.time();
+    out.unit = snap.unit(field);
     int rank = 0, nranks = 1;
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &nranks);
-    const std::uint64_t n = h5::dataset_length(g, "x");
+    const std::uint64_t n = snap.size();
     const std::uint64_t lo = n * rank / nranks, count = n * (rank + 1) / nranks - lo;
-    auto read = [&](const std::string& name) { return h5::read_doubles(g, name, lo, count); };
+    auto read = [&](const std::string& name) { return snap.read(name, lo, count); };
     const auto x = read("x"), y = read("y"), z = read("z"), h = read("h"), m = read("m"),
                rho = read("rho"), a = read(field);
     out.p.resize(count);
