@@ -50,20 +50,20 @@ class Runner:
         return p
 
 
-def builtin_state(r):
-    """The built-in Sedov's initial particles (its checkpoint of step 0)."""
-    out = r.work / "builtin0"
-    r.run(1, "--init", "sedov", "-n", SIDE, "--param", "dt0=1e-6", "-s", 0,
+def builtin_state(r, case="sedov"):
+    """A built-in case's initial particles (its checkpoint of step 0)."""
+    out = r.work / f"{case}0"
+    r.run(1, "--init", case, "-n", SIDE, "--param", "dt0=1e-6", "-s", 0,
           "--checkpoint-every", 1, "--out", out)
     with h5py.File(out / "checkpoint_000000.h5", "r") as f:
         g = f["state"]
         return {k: g[k][()] for k in ("x", "y", "z", "vx", "vy", "vz", "m", "h", "u", "id")}
 
 
-def write_gadget(path, s, mass_table=False, smoothing=True, mutate=None):
+def write_gadget(path, s, mass_table=False, smoothing=True, mutate=None, shift=SHIFT):
     """A GADGET-layout file of state s; `mutate(f, header, datasets)` breaks it before writing."""
     n = s["x"].size
-    pos = np.stack([s["x"], s["y"], s["z"]], axis=1) + SHIFT
+    pos = np.stack([s["x"], s["y"], s["z"]], axis=1) + shift
     data = {"Coordinates": pos, "Velocities": np.stack([s["vx"], s["vy"], s["vz"]], axis=1),
             "InternalEnergy": s["u"], "ParticleIDs": s["id"].astype(np.uint64)}
     if not mass_table:
@@ -88,14 +88,16 @@ def write_gadget(path, s, mass_table=False, smoothing=True, mutate=None):
                 g[k] = v
 
 
-def particles(snapshot, step, shift=0.0):
-    """Fields of a snapshot by particle id, positions moved back by `shift`."""
+def particles(snapshot, step, shift=0.0, wrap=True):
+    """Fields of a snapshot by particle id, positions moved back by `shift` (and, with `wrap`,
+    into the periodic image in [-0.5, 0.5])."""
     snap = exasph.load_snapshot(snapshot, step=step)
     order = np.argsort(snap.id)
     out = {k: snap.fields[k][order] for k in ("x", "y", "z", "vx", "vy", "vz", "u", "h", "rho")}
     for k in "xyz":
         out[k] = out[k] - shift
-        out[k] -= np.round(out[k])  # the periodic image in [-0.5, 0.5]
+        if wrap:
+            out[k] -= np.round(out[k])
     return out
 
 
@@ -151,6 +153,70 @@ def test_runs(r, state):
     assert np.all(np.isfinite(got["rho"])) and abs(np.median(got["rho"]) - 1.0) < 0.05, \
         np.median(got["rho"])
     print(f"no SmoothingLength: ran, median density {np.median(got['rho']):.4f} (1 expected)")
+
+
+def test_open_box(r):
+    """--open-box: Noh (an open case) from a GADGET file without BoxSize, in open boundaries
+    around its particles, equals the built-in Noh after 5 steps (the box only orders the
+    particles along the curve: round-off); without --open-box the file is refused (no BoxSize),
+    and --open-box on a test case or an exasph-layout file is refused."""
+    noh = builtin_state(r, "noh")
+
+    def no_box(f, h, d):
+        del h["BoxSize"]
+
+    path = r.work / "noh_open.hdf5"
+    write_gadget(path, noh, mutate=no_box, shift=0.0)
+    out = r.work / "noh_gadget_open"
+    r.run(2, "--init", path, "--open-box", "-s", STEPS, "-w", STEPS, "--double-precision",
+          "--out", out)
+    got = exasph.load_snapshot(out / f"snapshot_{STEPS:06d}.h5")
+    assert not any(got.attrs["periodic"]), got.attrs["periodic"]
+    ref_out = r.work / "noh_builtin"
+    r.run(1, "--init", "noh", "-n", SIDE, "--param", "dt0=1e-6", "-s", STEPS, "-w", STEPS,
+          "--double-precision", "--out", ref_out)
+    builtin = particles(ref_out / f"snapshot_{STEPS:06d}.h5", STEPS, wrap=False)
+    mine = particles(out / f"snapshot_{STEPS:06d}.h5", STEPS, wrap=False)
+    expect_same(builtin, mine, 1e-10, f"Noh from a GADGET file, --open-box, 2 ranks, {STEPS} steps")
+    expect_one_line(r, path, "BoxSize", "no BoxSize, no --open-box")
+    p = r.run(1, "--init", "sedov", "--open-box", "-s", 1, "--out", r.work / "refused", expect=2)
+    assert "--open-box: only for initial conditions from a GADGET-layout file" in p.stderr
+    own = r.work / "own_for_open.h5"
+    write_own_layout(own, noh)
+    p = r.run(1, "--init", own, "--open-box", "-s", 1, "--out", r.work / "refused", expect=2)
+    assert "states its box" in p.stderr and p.stderr.strip().count("\n") == 0, p.stderr
+    print("--open-box: Noh equals the built-in one; refused without it, on a case, on own layout")
+
+
+def test_units(r, state):
+    """Unit scales stated by the file (GADGET-4's /Parameters, SWIFT's /Units) become the run's
+    units: the root attribute `units` and /Header's Unit*_in_* of its snapshots."""
+    kpc, msun10, kms = 3.0856775814913673e21, 1.98841e43, 1e5
+
+    def gadget4(f, h, d):
+        p = f.create_group("Parameters")
+        p.attrs["UnitLength_in_cm"], p.attrs["UnitMass_in_g"] = kpc, msun10
+        p.attrs["UnitVelocity_in_cm_per_s"] = kms
+
+    def swift(f, h, d):
+        u = f.create_group("Units")
+        u.attrs["Unit length in cgs (U_L)"] = np.array([kpc])
+        u.attrs["Unit mass in cgs (U_M)"] = np.array([msun10])
+        u.attrs["Unit time in cgs (U_t)"] = np.array([kpc / kms])
+        u.attrs["Unit current in cgs (U_I)"] = np.array([1.0])
+
+    for name, mutate in (("GADGET-4 /Parameters", gadget4), ("SWIFT /Units", swift)):
+        path = r.work / f"units_{mutate.__name__}.hdf5"
+        write_gadget(path, state, mutate=mutate)
+        out = r.work / f"units_{mutate.__name__}"
+        r.run(1, "--init", path, "-s", 1, "-w", 1, "--out", out)
+        with h5py.File(out / "snapshot_000001.h5", "r") as f:
+            h = f["Header"].attrs
+            assert f.attrs["units"].startswith("GADGET units: UnitLength_in_cm="), f.attrs["units"]
+            got = (h["UnitLength_in_cm"], h["UnitMass_in_g"], h["UnitVelocity_in_cm_per_s"])
+            assert np.allclose(got, (kpc, msun10, kms), rtol=1e-15, atol=0), got
+            assert abs(h["UnitTime_in_s"] / (kpc / kms) - 1) < 1e-15, h["UnitTime_in_s"]
+        print(f"units from {name}: {got}, stated in the snapshot's /Header")
 
 
 def malformed():
@@ -222,6 +288,8 @@ def main():
         state = builtin_state(r)
         test_runs(r, state)
         test_refused(r, state)
+        test_open_box(r)
+        test_units(r, state)
     print("GADGET-layout initial conditions: all checks passed")
 
 

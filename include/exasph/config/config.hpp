@@ -68,7 +68,8 @@ struct Config {
     int sync_every = 1;               // most steps between domain syncs (sim/sync_schedule.hpp)
     int diagnostics_every = 1;        // steps between the diagnostics sums (and rows)
     CurveKind curve = CurveKind::hilbert;
-    bool lattice = false; // glass cases: regular lattice instead of the (cached) glass
+    bool lattice = false;  // glass cases: regular lattice instead of the (cached) glass
+    bool open_box = false; // GADGET-layout files: open boundaries instead of [0, BoxSize)
     std::vector<std::string> case_params; // --param KEY=VALUE: case parameters
 
     // Output and restart (issue 4).

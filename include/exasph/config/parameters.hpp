@@ -27,6 +27,9 @@ inline const std::array kParameters{
     Param{"--lattice", "lattice", "Glass cases (marked 'glass or --lattice' in the list of "
           "cases): start from a regular lattice instead of a relaxed glass", "",
           OnRestart::initial, &Config::lattice},
+    Param{"--open-box", "open_box", "Initial conditions from another code's GADGET-layout "
+          "file: open boundaries around the particles instead of the periodic box [0, BoxSize)",
+          "", OnRestart::initial, &Config::open_box},
     // Physics
     Param{"--scheme", "scheme", "Formulation: std (the paper's: standard SPH volumes, alpha "
           "viscosity on every approaching pair, no conductivity), ve (generalised volume "

@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include "exasph/io/gadget_layout.hpp"
 #include "exasph/io/h5_file.hpp"
 #include "exasph/io/particle_io.hpp"
+#include "exasph/io/unit_scales.hpp"
 #include "exasph/util/error.hpp"
 
 // Initial conditions in the GADGET HDF5 layout, which GADGET-2/3/4, SWIFT, AREPO and GIZMO read
@@ -72,6 +74,9 @@ inline void refuse_other_types(const std::array<std::uint64_t, 6>& n, const std:
 // The periodic box [0, BoxSize) on every axis (BoxSize: one number, or one per axis).
 template <class T>
 Box<T> periodic_box(const h5::Group& header) {
+    if (!h5::has_attribute(header, "BoxSize"))
+        throw input_error(header.file().path() + ": no attribute /Header/BoxSize: the periodic "
+                                                 "box [0, BoxSize) (or run with --open-box)");
     const auto v = h5::read_attribute_doubles(header, "BoxSize");
     if (v.size() != 1 && v.size() != 3)
         throw input_error(header.file().path() + ": attribute /Header/BoxSize must be one number "
@@ -125,24 +130,54 @@ void refuse_negative_energy(const ParticleSet<T>& ps, const std::string& path) {
 }
 
 // The run attributes of a file from another code: ideal gas with gamma = 5/3 (the layout does
-// not store it) in the periodic box of BoxSize; the first time step 1e-6.
+// not store it) in the periodic box of BoxSize (unless `open`: then the box is the particles',
+// set when they are read), in the file's units where it states them; the first time step 1e-6.
 template <class T>
-InitialConditions<T> run_attributes(const h5::Group& header) {
+InitialConditions<T> run_attributes(const h5::Group& header, bool open) {
     InitialConditions<T> ic;
     ic.name = header.file().path();
-    ic.box = periodic_box<T>(header);
+    if (!open) ic.box = periodic_box<T>(header);
     ic.eos = {EosKind::ideal_gas, 5.0 / 3.0, 0.0};
+    if (const auto scales = read_unit_scales(header.file())) ic.units = describe_units(*scales);
     return ic;
+}
+
+// The bounding box of every rank's positions (rows of x, y, z), open on every axis (one
+// collective). An axis on which all particles share a coordinate gets a width of 1e-6 of the
+// largest |coordinate| (or 1), so that lo < hi.
+template <class T>
+Box<T> open_bounding_box(const std::vector<double>& pos, MPI_Comm comm) {
+    double lo_neg_hi[6] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (std::size_t i = 0; i + 2 < pos.size(); i += 3)
+        for (int d = 0; d < 3; ++d) {
+            lo_neg_hi[d] = std::max(lo_neg_hi[d], -pos[i + std::size_t(d)]);
+            lo_neg_hi[3 + d] = std::max(lo_neg_hi[3 + d], pos[i + std::size_t(d)]);
+        }
+    MPI_Allreduce(MPI_IN_PLACE, lo_neg_hi, 6, MPI_DOUBLE, MPI_MAX, comm);
+    Box<T> box;
+    for (int d = 0; d < 3; ++d) {
+        double lo = -lo_neg_hi[d], hi = lo_neg_hi[3 + d];
+        if (!(lo < hi)) {
+            const double pad = 1e-6 * std::max({std::abs(lo), std::abs(hi), 1.0});
+            lo -= pad;
+            hi += pad;
+        }
+        box.lo[d] = T(lo);
+        box.hi[d] = T(hi);
+        box.periodic[d] = false;
+    }
+    return box;
 }
 
 } // namespace gadget
 
-// The gas of a GADGET-layout file into `ic` (whose box and dt0 are set); every rank reads its
-// share of the rows. Masses from MassTable[0] when it is positive, else from Masses; h from
-// SmoothingLength (the kernel support radius 2h), else ng0 neighbours at the particle's Density,
-// else at the box's mean density (the run's first steps then adjust h).
+// The gas of a GADGET-layout file into `ic` (whose box, unless `open_box`, and dt0 are set);
+// every rank reads its share of the rows. Masses from MassTable[0] when it is positive, else from
+// Masses; h from SmoothingLength (the kernel support radius 2h), else ng0 neighbours at the
+// particle's Density, else at the box's mean density (the run's first steps then adjust h).
 template <class T>
-void read_gadget_gas(const h5::File& file, MPI_Comm comm, double ng0, InitialConditions<T>& ic) {
+void read_gadget_gas(const h5::File& file, MPI_Comm comm, double ng0, InitialConditions<T>& ic,
+                     bool open_box) {
     const std::string& path = file.path();
     h5::Group header(file, "/Header", false), gas(file, "/PartType0", false);
     const auto files = h5::has_attribute(header, "NumFilesPerSnapshot")
@@ -163,6 +198,7 @@ void read_gadget_gas(const h5::File& file, MPI_Comm comm, double ng0, InitialCon
 
     gadget::GasRows r;
     r.pos = gadget::read_gas(gas, name(Field::x), 3, n, lo, count, true);
+    if (open_box) ic.box = gadget::open_bounding_box<T>(r.pos, comm);
     r.vel = gadget::read_gas(gas, name(Field::vx), 3, n, lo, count, false);
     if (r.vel.empty()) r.vel.assign(3 * count, 0.0); // at rest
     r.u = gadget::read_gas(gas, name(Field::u), 1, n, lo, count, true);

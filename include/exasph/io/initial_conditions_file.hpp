@@ -62,16 +62,24 @@ inline bool written_by_exasph(const h5::Group& root) {
 // Initial conditions from an HDF5 file in the layout of docs/file-format.md, or in the GADGET
 // layout of other codes and of exasph's snapshots (io/gadget_ic.hpp: h from ng0 neighbours where
 // the file has none); every rank reads its share. Ideal-gas EOS with the file's gamma.
+// `open_box`: a file of another code in the GADGET layout gets open boundaries around its
+// particles instead of the periodic box [0, BoxSize) (files exasph wrote state their box).
 template <class T>
 InitialConditions<T> read_initial_conditions(const std::string& path, MPI_Comm comm,
-                                             double ng0 = 100) {
+                                             double ng0 = 100, bool open_box = false) {
     h5::File file = h5::File::open_read(path, comm);
     h5::Group root(file, "/", false);
+    const bool own = written_by_exasph(root);
+    if (open_box && (own || !is_gadget_layout(root)))
+        throw input_error("--open-box: " + path +
+                              " is in exasph's layout, which states its box "
+                              "(box_lo, box_hi, periodic)",
+                          true);
     if (is_gadget_layout(root)) {
         InitialConditions<T> ic =
-            written_by_exasph(root) ? own_run_attributes<T>(root)
-                                    : gadget::run_attributes<T>(h5::Group(file, "/Header", false));
-        read_gadget_gas(file, comm, ng0, ic);
+            own ? own_run_attributes<T>(root)
+                : gadget::run_attributes<T>(h5::Group(file, "/Header", false), open_box);
+        read_gadget_gas(file, comm, ng0, ic, open_box);
         return ic;
     }
     if (h5::has_link(root, "PartType0"))

@@ -11,6 +11,7 @@
 #include "exasph/io/output_state.hpp"
 #include "exasph/io/particle_io.hpp"
 #include "exasph/io/run_attributes.hpp"
+#include "exasph/io/unit_scales.hpp"
 #include "exasph/io/xdmf.hpp"
 
 namespace exasph {
@@ -79,7 +80,8 @@ inline constexpr std::int64_t kSnapshotFormatVersion = 2;
 
 // /Header as GADGET-layout readers (yt, GADGET tools) need it: gas counts, MassTable of zeros
 // (masses per particle), Time, BoxSize (one number for a cube, else one per axis), one file;
-// and exasph's step and dt. Runs in cgs also state their unit scales, as GADGET does.
+// and exasph's step and dt. Runs with physical units (cgs, or a file's: io/unit_scales.hpp) also
+// state their unit scales, as GADGET does.
 template <class T>
 void write_gadget_header(const h5::Group& header, std::uint64_t n, const OutputState<T>& run,
                          const std::string& units) {
@@ -98,10 +100,12 @@ void write_gadget_header(const h5::Group& header, std::uint64_t n, const OutputS
     h5::write_attribute(header, "BoxSize", cube ? std::vector<double>{side[0]} : side);
     h5::write_attribute(header, "step", std::int64_t(run.restart.step));
     h5::write_attribute(header, "dt", run.dt);
-    if (units.rfind("cgs", 0) == 0)
-        for (const char* scale :
-             {"UnitLength_in_cm", "UnitMass_in_g", "UnitVelocity_in_cm_per_s", "UnitTime_in_s"})
-            h5::write_attribute(header, scale, 1.0);
+    if (const auto s = unit_scales(units)) {
+        h5::write_attribute(header, "UnitLength_in_cm", s->length_cm);
+        h5::write_attribute(header, "UnitMass_in_g", s->mass_g);
+        h5::write_attribute(header, "UnitVelocity_in_cm_per_s", s->velocity_cm_per_s);
+        h5::write_attribute(header, "UnitTime_in_s", s->length_cm / s->velocity_cm_per_s);
+    }
 }
 
 // Snapshot in the GADGET layout (docs/file-format.md): /Header, and the gas datasets of the

@@ -52,8 +52,12 @@ inline InitialConditions<double> make_case(const Config& cfg, MPI_Comm comm = MP
             throw input_error("--param " + cfg.case_params.front() +
                                   ": initial conditions from a file take no case parameters",
                               true);
-        return read_initial_conditions<double>(cfg.init, comm, cfg.ng0);
+        return read_initial_conditions<double>(cfg.init, comm, cfg.ng0, cfg.open_box);
     }
+    if (cfg.open_box)
+        throw input_error("--open-box: only for initial conditions from a GADGET-layout file, not "
+                          "a test case",
+                          true);
     const CaseInfo* c = find_case(cfg.init);
     if (!c)
         throw input_error("--init: unknown case '" + cfg.init + "' (known: " + case_names() +
