@@ -46,9 +46,17 @@ def yt_load(path, **kwargs):
     support radius, 2h. `kwargs` go to yt.load (e.g. kernel_name)."""
     import yt
 
+    from yt.utilities.logger import ytLogger
+
     arguments, periodic = yt_arguments(path)
     arguments.update(kwargs)
-    ds = yt.load(str(path), **arguments)
+    level = ytLogger.level
+    if periodic:  # yt warns that a bounding box turns periodicity off; it is turned back on
+        ytLogger.setLevel(max(level, 40))
+    try:
+        ds = yt.load(str(path), **arguments)
+    finally:
+        ytLogger.setLevel(level)
     if periodic:
         ds.force_periodicity()
     return ds
