@@ -133,18 +133,24 @@ def _gadget_columns(g):
     return out
 
 
+def _selected(names, fields, path, g):
+    """The field names to read: `fields` and x, y, z (all when fields is None)."""
+    if fields is None:
+        return names
+    wanted = set(fields) | {"x", "y", "z"}
+    missing = sorted(wanted - set(names))
+    if missing:
+        raise ExasphFileError(f"{path}: no datasets {', '.join(missing)} in {g.name}")
+    return [k for k in names if k in wanted]
+
+
 def _load_gadget(f, path, step, fields):
     g, header = f["PartType0"], f["Header"]
     columns = _gadget_columns(g)
     if step is not None and int(header.attrs.get("step", -1)) != step:
         raise ExasphFileError(f"{path}: no step {step} (step: {int(header.attrs.get('step', -1))})")
     names = list(columns)
-    if fields is not None:
-        wanted = set(fields) | {"x", "y", "z"}
-        missing = sorted(wanted - set(names))
-        if missing:
-            raise ExasphFileError(f"{path}: no datasets {', '.join(missing)} in {g.name}")
-        names = [k for k in names if k in wanted]
+    names = _selected(names, fields, path, g)
     data, units, read = {}, {}, {}
     for k in names:
         dataset, col, scale = columns[k]
@@ -169,14 +175,8 @@ def load_snapshot(path, step=None, fields=None):
         if is_gadget_layout(f):
             return _load_gadget(f, path, step, fields)
         g = particle_group(f, step)
-        names = [k for k in g.keys() if getattr(g[k], "ndim", 0) == 1
-                 and k != "id"]
-        if fields is not None:
-            wanted = set(fields) | {"x", "y", "z"}
-            missing = sorted(wanted - set(names))
-            if missing:
-                raise ExasphFileError(f"{path}: no datasets {', '.join(missing)} in {g.name}")
-            names = [k for k in names if k in wanted]
+        names = [k for k in g.keys() if getattr(g[k], "ndim", 0) == 1 and k != "id"]
+        names = _selected(names, fields, path, g)
         data = {k: np.asarray(g[k][()], dtype=float) for k in names}
         for k in ("x", "y", "z"):
             if k not in data:
