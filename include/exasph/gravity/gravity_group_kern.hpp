@@ -71,23 +71,18 @@ GravityField evaluate_interactions(const GravityInteractionList& list, const Gra
     const std::size_t n = list.mass.size();
     const double *m = list.mass.data(), *cx = list.cx.data(), *cy = list.cy.data(),
                  *cz = list.cz.data();
-    const double *q0 = list.q[0].data(), *q1 = list.q[1].data(), *q2 = list.q[2].data(),
-                 *q3 = list.q[3].data(), *q4 = list.q[4].data(), *q5 = list.q[5].data();
-    const double *s0 = list.s[0].data(), *s1 = list.s[1].data(), *s2 = list.s[2].data(),
-                 *s3 = list.s[3].data(), *s4 = list.s[4].data(), *s5 = list.s[5].data(),
-                 *s6 = list.s[6].data(), *s7 = list.s[7].data(), *s8 = list.s[8].data(),
-                 *s9 = list.s[9].data();
+    // Column pointers set once, outside the loop: the accessors then index them directly, which
+    // lets the compiler vectorise the loop (building the pointer arrays per iteration kept it
+    // scalar).
+    const double* q[6];
+    const double* s[10];
+    for (int c = 0; c < 6; ++c) q[c] = list.q[c].data();
+    for (int c = 0; c < 10; ++c) s[c] = list.s[c].data();
 #pragma omp simd reduction(+ : ax, ay, az, phi)
     for (std::size_t k = 0; k < n; ++k) {
-        auto qk = [&](int c) {
-            const double* col[6] = {q0, q1, q2, q3, q4, q5};
-            return col[c][k];
-        };
-        auto sk = [&](int c) {
-            const double* col[10] = {s0, s1, s2, s3, s4, s5, s6, s7, s8, s9};
-            return col[c][k];
-        };
-        const GravityField g = multipole_field(m[k], qk, sk, x - cx[k], y - cy[k], z - cz[k]);
+        const GravityField g = multipole_field(
+            m[k], [&](int c) { return q[c][k]; }, [&](int c) { return s[c][k]; }, x - cx[k],
+            y - cy[k], z - cz[k]);
         ax += g.ax;
         ay += g.ay;
         az += g.az;
