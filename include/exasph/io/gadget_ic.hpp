@@ -100,23 +100,13 @@ struct GasRows {
     std::vector<std::uint64_t> id;
 };
 
-// Rows of a gas dataset of N x width values (width 1: 1-D), checked to number n.
-inline void expect_rows(const h5::Group& gas, const std::string& name, std::uint64_t width,
-                        std::uint64_t n, bool integer = false) {
-    const std::uint64_t rows = h5::dataset_rows(gas, name, width, integer);
-    if (rows != n)
-        throw input_error(gas.file().path() + ": /PartType0/" + name + " has " +
-                          std::to_string(rows) + " rows, /Header/NumPart_Total[0] says " +
-                          std::to_string(n));
-}
-
 // This rank's rows [lo, lo + count) of a gas dataset of n rows of `width` values; empty when
 // optional and absent.
 inline std::vector<double> read_gas(const h5::Group& gas, const std::string& name,
                                     std::uint64_t width, std::uint64_t n, std::uint64_t lo,
                                     std::uint64_t count, bool required) {
     if (!required && !h5::has_link(gas, name)) return {};
-    expect_rows(gas, name, width, n);
+    expect_gas_rows(gas, name, width, n);
     return h5::read_double_rows(gas, name, lo, count, width);
 }
 
@@ -208,7 +198,7 @@ void read_gadget_gas(const h5::File& file, MPI_Comm comm, double ng0, InitialCon
     r.h = gadget::read_gas(gas, name(Field::h), 1, n, lo, count, false);
     if (r.h.empty()) r.rho = gadget::read_gas(gas, name(Field::rho), 1, n, lo, count, false);
     if (h5::has_link(gas, kGadgetIds)) {
-        gadget::expect_rows(gas, kGadgetIds, 1, n, true);
+        expect_gas_rows(gas, kGadgetIds, 1, n, true);
         r.id = h5::read_u64(gas, kGadgetIds, lo, count);
     }
     const double support = gadget_column(Field::h).dataset.scale; // SmoothingLength / h

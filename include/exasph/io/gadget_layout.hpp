@@ -66,16 +66,24 @@ inline std::vector<GadgetDataset> gadget_datasets(const std::vector<Field>& fiel
     return out;
 }
 
+// Checks that the gas dataset `name` holds n rows of `width` values (width 1: 1-D); the error
+// names the dataset and the count /Header states.
+inline void expect_gas_rows(const h5::Group& gas, const std::string& name, std::uint64_t width,
+                            std::uint64_t n, bool integer = false) {
+    const std::uint64_t rows = h5::dataset_rows(gas, name, width, integer);
+    if (rows != n)
+        throw input_error(gas.file().path() + ": /PartType0/" + name + " has " +
+                          std::to_string(rows) + " rows, /Header/NumPart_Total[0] says " +
+                          std::to_string(n));
+}
+
 // This rank's rows [lo, lo + count) of field f from a /PartType0 group of n rows, in exasph's
 // units (divided by the dataset's scale). Throws an input error naming a missing dataset.
 inline std::vector<double> read_gadget_field(const h5::Group& gas, Field f, std::uint64_t n,
                                              std::uint64_t lo, std::uint64_t count) {
     const GadgetColumn c = gadget_column(f);
     const std::uint64_t width = std::uint64_t(c.dataset.width);
-    const std::uint64_t rows = h5::dataset_rows(gas, c.dataset.name, width);
-    if (rows != n)
-        throw input_error(gas.file().path() + ": /PartType0/" + c.dataset.name + " has " +
-                          std::to_string(rows) + " rows, the gas has " + std::to_string(n));
+    expect_gas_rows(gas, c.dataset.name, width, n);
     const auto all = h5::read_double_rows(gas, c.dataset.name, lo, count, width);
     std::vector<double> out(count);
     for (std::uint64_t i = 0; i < count; ++i)
