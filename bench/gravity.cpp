@@ -10,6 +10,7 @@
 
 #include "../tests/common/direct_gravity.hpp"
 #include "exasph/cases/evrard.hpp"
+#include "exasph/cases/jeans.hpp"
 #include "exasph/domain/domain.hpp"
 #include "exasph/gravity/gravity_solver.hpp"
 #include "exasph/kernel/sinc_kernel.hpp"
@@ -30,6 +31,27 @@ void bm_gravity(benchmark::State& state) {
     KernelTable<double> kernel(sinc_kernel(6));
     GravitySolver<double> solver(kernel, 1.0, double(state.range(2)) / 100.0,
                                  std::uint32_t(state.range(1)));
+    for (auto _ : state)
+        solver.compute(ps, dom.n_owned(), dom.assignment(), ic.box, dom.curve(), dom.collectives());
+    state.SetItemsProcessed(state.iterations() * std::int64_t(dom.n_owned()));
+    state.counters["particles"] = double(dom.n_owned());
+    state.counters["multipoles"] = solver.multipoles_per_particle();
+    state.counters["pairs"] = solver.pairs_per_particle();
+}
+
+// One pass in a periodic box (minimum image + Ewald correction): the Jeans case's perturbed
+// glass of side range(0), leaf size 16, theta range(1) / 100.
+void bm_gravity_periodic(benchmark::State& state) {
+    JeansParams jp;
+    jp.side = int(state.range(0));
+    auto ic = make_jeans<double>(
+        jp, CaseContext::one_rank(UnitCubePoints::lattice(std::uint64_t(jp.side))));
+    auto& ps = ic.particles;
+    Domain<double> dom(MPI_COMM_SELF, 128, 64, CurveKind::hilbert);
+    dom.init(ps, ic.box);
+    dom.sync(ps, ic.box);
+    KernelTable<double> kernel(sinc_kernel(6));
+    GravitySolver<double> solver(kernel, 1.0, double(state.range(1)) / 100.0, 16);
     for (auto _ : state)
         solver.compute(ps, dom.n_owned(), dom.assignment(), ic.box, dom.curve(), dom.collectives());
     state.SetItemsProcessed(state.iterations() * std::int64_t(dom.n_owned()));
@@ -69,6 +91,11 @@ void bm_force_error(benchmark::State& state) {
 }
 
 } // namespace
+
+BENCHMARK(bm_gravity_periodic)
+    ->ArgsProduct({{24, 48}, {50}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 BENCHMARK(bm_force_error)->DenseRange(20, 80, 10)->Unit(benchmark::kMillisecond)->UseRealTime();
 

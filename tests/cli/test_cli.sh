@@ -81,7 +81,7 @@ fi
 expect_rejected "carries no field" --init sedov -n 10 -s 2 --inject-fault 1:alpha:3:40
 expect_rejected "smoothing length" -n 4 -s 1
 expect_rejected "--theta" --init evrard --theta 1.5
-expect_rejected "open box" --init sedov --lattice -n 10 --G 1 -s 1
+expect_rejected "some axes only" --init square-patch --lattice -n 10 --G 1 -s 1
 expect_rejected "--curve" --curve peano
 expect_rejected "--energy-weights" --init sedov -n 10 -s 1 --scheme std --energy-weights
 expect_rejected "ideal-gas" --init square-patch -n 10 -s 1 --scheme pe

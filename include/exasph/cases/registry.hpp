@@ -6,11 +6,13 @@
 #include "exasph/cases/evrard.hpp"
 #include "exasph/cases/gresho_chan.hpp"
 #include "exasph/cases/isobaric_cube.hpp"
+#include "exasph/cases/jeans.hpp"
 #include "exasph/cases/kelvin_helmholtz.hpp"
 #include "exasph/cases/noh.hpp"
 #include "exasph/cases/sedov.hpp"
 #include "exasph/cases/square_patch.hpp"
 #include "exasph/cases/turbulence.hpp"
+#include "exasph/cases/turbulent_collapse.hpp"
 #include "exasph/cases/wind_cloud.hpp"
 
 namespace exasph {
@@ -19,9 +21,17 @@ namespace exasph {
 // cases/ (its parameters, maker and CaseInfo) and one entry here (with its #include).
 inline const std::vector<const CaseInfo*>& case_registry() {
     static const std::vector<const CaseInfo*> cases{
-        &square_patch_case(),     &sedov_case(),       &noh_case(),
-        &evrard_case(),           &gresho_chan_case(), &isobaric_cube_case(),
-        &kelvin_helmholtz_case(), &wind_cloud_case(),  &turbulence_case(),
+        &square_patch_case(),
+        &sedov_case(),
+        &noh_case(),
+        &evrard_case(),
+        &gresho_chan_case(),
+        &isobaric_cube_case(),
+        &kelvin_helmholtz_case(),
+        &wind_cloud_case(),
+        &turbulence_case(),
+        &turbulent_collapse_case(),
+        &jeans_case(),
     };
     return cases;
 }

@@ -11,6 +11,7 @@
 #include "exasph/domain/global_tree.hpp"
 #include "exasph/domain/sfc_order.hpp"
 #include "exasph/gravity/gravity_group_kern.hpp"
+#include "exasph/gravity/gravity_periodicity.hpp"
 #include "exasph/gravity/gravity_tree.hpp"
 #include "exasph/gravity/leaf_summary_sums.hpp"
 #include "exasph/particles/particle_set.hpp"
@@ -53,7 +54,8 @@ class GravitySolver {
         const std::uint32_t f0 = asg.first_leaf[me], f1 = asg.first_leaf[me + 1];
         auto own = owned_leaf_ranges(ps, n, asg, box, curve, f0, f1);
         auto summaries = reduce_summaries(ps, asg, own, f0, f1, coll);
-        tree_.build_top(asg.leaf_keys, summaries, theta_);
+        periodicity_.prepare(box);
+        tree_.build_top(asg.leaf_keys, summaries, theta_, periodicity_.image());
         auto need = leaves_needed_here(summaries, asg, me, nl);
         auto received = exchange_sources(ps, asg, summaries, need, own, coll);
         const std::size_t self_offset =
@@ -229,6 +231,12 @@ class GravitySolver {
                                        0) < nodes[g].end - nodes[g].begin))
                 groups_.push_back(g);
         const double G = G_;
+        const GravityImage img = periodicity_.image();
+        const bool periodic = periodicity_.periodic();
+        const EwaldTable::View ewald = periodic ? periodicity_.ewald() : EwaldTable::View{};
+        // The particle's own images and the background (phi_c(0), physics.md §8).
+        const double self_phi = periodic ? ewald.phi_at_origin() : 0.0;
+        const T* mass = ps.data(Field::m);
         int missing = 0;
         double multipoles = 0, pairs = 0;
         const auto ng = std::int64_t(groups_.size());
@@ -238,7 +246,8 @@ class GravitySolver {
 #pragma omp for schedule(dynamic, 2)
             for (std::int64_t k = 0; k < ng; ++k) {
                 const GravityNode<T>& grp = nodes[groups_[k]];
-                collect_interactions(tv, grp, list);
+                periodic ? collect_interactions<true>(tv, grp, img, list)
+                         : collect_interactions<false>(tv, grp, img, list);
                 if (list.missing) missing = 1;
                 std::uint32_t npairs = 0;
                 for (std::size_t r = 0; r < list.ranges.size(); r += 2)
@@ -246,12 +255,17 @@ class GravitySolver {
                 for (std::uint32_t j = grp.begin; j < grp.end; ++j) {
                     const std::size_t i = j - self_offset;
                     if (active && !active[i]) continue;
-                    const GravityField f = evaluate_interactions(
-                        list, tv, soft, double(x[i]), double(y[i]), double(z[i]), double(h[i]), j);
+                    const double xi = double(x[i]), yi = double(y[i]), zi = double(z[i]),
+                                 hi = double(h[i]);
+                    const GravityField f =
+                        periodic ? evaluate_interactions<true>(list, tv, soft, xi, yi, zi, hi, j,
+                                                               img, ewald)
+                                 : evaluate_interactions<false>(list, tv, soft, xi, yi, zi, hi, j,
+                                                                img, ewald);
                     ax[i] += T(G * f.ax);
                     ay[i] += T(G * f.ay);
                     az[i] += T(G * f.az);
-                    phi[i] = T(G * f.phi);
+                    phi[i] = T(G * (f.phi + self_phi * double(mass[i])));
                 }
                 multipoles += double(list.nodes.size()) * (grp.end - grp.begin);
                 pairs += double(npairs) * (grp.end - grp.begin);
@@ -265,6 +279,7 @@ class GravitySolver {
 
     SofteningTable<T> soft_;
     double G_, theta_;
+    GravityPeriodicity periodicity_;
     std::uint32_t bucket_;
     GravityTree<T> tree_;
     GravitySources<T> src_;

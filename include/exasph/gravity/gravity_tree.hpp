@@ -59,8 +59,11 @@ template <class T>
 class GravityTree {
   public:
     void build_top(const std::vector<std::uint64_t>& leaf_keys,
-                   const std::vector<LeafSummary<T>>& leaves, double theta) {
+                   const std::vector<LeafSummary<T>>& leaves, double theta,
+                   const GravityImage& image) {
         theta_ = theta;
+        image_ = image;
+        periodic_ = image.len[0] > 0 || image.len[1] > 0 || image.len[2] > 0;
         const auto nl = std::uint32_t(leaf_keys.size() - 1);
         leaf_keys_ = leaf_keys;
         top_.build(leaf_keys.data(), nl, 1);
@@ -94,7 +97,9 @@ class GravityTree {
             stack.pop_back();
             const auto& nd = nodes_[k];
             if (tn[k].end <= first || tn[k].begin >= last || nd.mp.mass <= 0) continue;
-            if (!box_may_open(nd, lo, hi, hmax)) continue;
+            const bool may_open = periodic_ ? box_may_open<true>(nd, lo, hi, hmax, image_)
+                                            : box_may_open<false>(nd, lo, hi, hmax, image_);
+            if (!may_open) continue;
             if (nd.first_child < 0)
                 f(tn[k].begin);
             else
@@ -152,6 +157,9 @@ class GravityTree {
     std::size_t num_top() const {
         return num_top_;
     }
+    const GravityImage& image() const {
+        return image_;
+    }
 
   private:
     std::vector<GravityNode<T>> build_subtree(const GravitySources<T>& s, std::uint32_t b,
@@ -202,6 +210,8 @@ class GravityTree {
     }
 
     double theta_ = 0.5;
+    GravityImage image_{Box<double>{{0, 0, 0}, {1, 1, 1}, {false, false, false}}};
+    bool periodic_ = false;
     Octree<T> top_;
     std::vector<std::uint64_t> leaf_keys_;
     std::vector<GravityNode<T>> nodes_;

@@ -127,6 +127,13 @@ struct GravityField {
     double ax = 0, ay = 0, az = 0, phi = 0;
 };
 
+EXASPH_HD EXASPH_INLINE void add_field(GravityField& f, const GravityField& g) {
+    f.ax += g.ax;
+    f.ay += g.ay;
+    f.az += g.az;
+    f.phi += g.phi;
+}
+
 // The terms of one multipole at displacement d; q(c) and s(c) return the components c of the
 // quadrupole and octupole in the order of Multipole (accessors, so that the same code reads a
 // Multipole or a column of packed moments inside a vectorised loop).

@@ -25,15 +25,12 @@ void enable_run_fields(ParticleSet<T>& ps, const Config& cfg, const EosParams& e
     require_eos_inputs(ps, ps.size(), eos, cfg.energy_weights, coll);
 }
 
-// Self-gravity with constant G > 0 (physics.md §8) in an open box, with its fields.
+// Self-gravity with constant G > 0 (physics.md §8), open or periodic on every axis (the solver
+// refuses a box periodic along some axes only), with its fields.
 template <class T>
-void start_gravity(std::optional<GravitySolver<T>>& gravity, ParticleSet<T>& ps, const Box<T>& box,
+void start_gravity(std::optional<GravitySolver<T>>& gravity, ParticleSet<T>& ps,
                    const KernelTable<T>& kernel, const Config& cfg, double G) {
     if (!(G > 0)) return;
-    if (box.any_periodic())
-        throw input_error("self-gravity needs an open box: periodic gravity (Ewald summation) is "
-                          "not implemented; run with --G 0",
-                          true);
     gravity.emplace(kernel, G, cfg.theta, std::uint32_t(cfg.gravity_leaf_size));
     ps.enable(Field::phi), ps.enable(Field::gsoft);
 }

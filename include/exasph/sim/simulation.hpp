@@ -57,7 +57,7 @@ class Simulation {
           safety_on_(cfg.on_sdc != SdcPolicy::off), clock_{ic.dt0, ic.dt0, 0.0, -1.0, 0},
           sched_(cfg.sync_every, cfg.diagnostics_every), exact_(std::move(ic.exact)) {
         enable_run_fields(ps_, cfg, eos_, domain_.collectives());
-        start_gravity(gravity_, ps_, box_, kernel_, cfg, cfg.G >= 0 ? cfg.G : ic.G);
+        start_gravity(gravity_, ps_, kernel_, cfg, cfg.G >= 0 ? cfg.G : ic.G);
         if (cfg.timesteps == TimeStepping::block) // the case's stirring when not given
             blocks_.emplace(ps_, cfg, cfg.stir_mach < 0 ? ic.stir_mach > 0 : cfg.stir_mach > 0);
         if (!restart && cfg_.av_switch)
