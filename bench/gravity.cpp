@@ -19,18 +19,15 @@ using namespace exasph;
 
 namespace {
 
-void bm_gravity(benchmark::State& state) {
-    EvrardParams ep;
-    ep.side = int(state.range(0));
-    auto ic = make_evrard<double>(
-        ep, CaseContext::one_rank(UnitCubePoints::lattice(std::uint64_t(ep.side))));
+// Times solver passes over the particles of `ic` on one rank, with the interaction counts.
+void time_passes(benchmark::State& state, InitialConditions<double>& ic, double theta,
+                 std::uint32_t leaf) {
     auto& ps = ic.particles;
     Domain<double> dom(MPI_COMM_SELF, 128, 64, CurveKind::hilbert);
     dom.init(ps, ic.box);
     dom.sync(ps, ic.box);
     KernelTable<double> kernel(sinc_kernel(6));
-    GravitySolver<double> solver(kernel, 1.0, double(state.range(2)) / 100.0,
-                                 std::uint32_t(state.range(1)));
+    GravitySolver<double> solver(kernel, 1.0, theta, leaf);
     for (auto _ : state)
         solver.compute(ps, dom.n_owned(), dom.assignment(), ic.box, dom.curve(), dom.collectives());
     state.SetItemsProcessed(state.iterations() * std::int64_t(dom.n_owned()));
@@ -39,25 +36,24 @@ void bm_gravity(benchmark::State& state) {
     state.counters["pairs"] = solver.pairs_per_particle();
 }
 
+// One pass on an Evrard sphere from a lattice of side range(0), leaf size range(1), theta
+// range(2) / 100.
+void bm_gravity(benchmark::State& state) {
+    EvrardParams ep;
+    ep.side = int(state.range(0));
+    auto ic = make_evrard<double>(
+        ep, CaseContext::one_rank(UnitCubePoints::lattice(std::uint64_t(ep.side))));
+    time_passes(state, ic, double(state.range(2)) / 100.0, std::uint32_t(state.range(1)));
+}
+
 // One pass in a periodic box (minimum image + Ewald correction): the Jeans case's perturbed
-// glass of side range(0), leaf size 16, theta range(1) / 100.
+// lattice of side range(0), leaf size 16, theta range(1) / 100.
 void bm_gravity_periodic(benchmark::State& state) {
     JeansParams jp;
     jp.side = int(state.range(0));
     auto ic = make_jeans<double>(
         jp, CaseContext::one_rank(UnitCubePoints::lattice(std::uint64_t(jp.side))));
-    auto& ps = ic.particles;
-    Domain<double> dom(MPI_COMM_SELF, 128, 64, CurveKind::hilbert);
-    dom.init(ps, ic.box);
-    dom.sync(ps, ic.box);
-    KernelTable<double> kernel(sinc_kernel(6));
-    GravitySolver<double> solver(kernel, 1.0, double(state.range(1)) / 100.0, 16);
-    for (auto _ : state)
-        solver.compute(ps, dom.n_owned(), dom.assignment(), ic.box, dom.curve(), dom.collectives());
-    state.SetItemsProcessed(state.iterations() * std::int64_t(dom.n_owned()));
-    state.counters["particles"] = double(dom.n_owned());
-    state.counters["multipoles"] = solver.multipoles_per_particle();
-    state.counters["pairs"] = solver.pairs_per_particle();
+    time_passes(state, ic, double(state.range(1)) / 100.0, 16);
 }
 
 void bm_force_error(benchmark::State& state) {

@@ -4,8 +4,7 @@
 
 #include "exasph/cases/case_info.hpp"
 #include "exasph/cases/initial_conditions.hpp"
-#include "exasph/cases/initial_h.hpp"
-#include "exasph/cases/unit_cube_points.hpp"
+#include "exasph/cases/periodic_gas.hpp"
 #include "exasph/util/error.hpp"
 
 namespace exasph {
@@ -60,32 +59,17 @@ InitialConditions<T> make_jeans(const JeansParams& p, const CaseContext& ctx) {
     if (!(p.amplitude < 0.5)) throw input_error("jeans: amplitude must be below 0.5", true);
     if (std::abs(p.mode - std::round(p.mode)) > 1e-12)
         throw input_error("jeans: mode must be a whole number (the box is periodic)", true);
-    InitialConditions<T> ic;
+    const double dt0 = 1e-3 / (p.sound_speed * p.side);
+    InitialConditions<T> ic =
+        make_periodic_gas<T>(p.ng0, p.gamma, p.sound_speed, dt0, ctx, [&](double* pos, double& u) {
+            const double phase = th.k * pos[0];
+            pos[0] -= p.amplitude / th.k * std::sin(phase);
+            pos[0] -= std::floor(pos[0]);
+            u *= 1 + (p.gamma - 1) * p.amplitude * std::cos(phase);
+        });
     ic.name = "jeans";
     ic.G = th.G;
-    ic.dt0 = 1e-3 / (p.sound_speed * p.side);
     ic.t_end = th.grows ? 3 / th.rate : 2 * M_PI / th.rate;
-    ic.eos = {EosKind::ideal_gas, p.gamma, 0.0};
-    ic.box.lo = {T(0), T(0), T(0)};
-    ic.box.hi = {T(1), T(1), T(1)};
-    ic.box.periodic = {true, true, true};
-    const UnitCubePoints points = ctx.points();
-    std::uint64_t first = 0, last = 0;
-    points.share(ctx.rank, ctx.nranks, first, last);
-    const double mass = 1.0 / double(points.size());
-    const double h0 = initial_smoothing_length(points.spacing(), p.ng0);
-    const double u0 = p.sound_speed * p.sound_speed / (p.gamma * (p.gamma - 1));
-    auto& ps = ic.particles;
-    ps.resize(last - first);
-    for (std::uint64_t idx = first; idx < last; ++idx) {
-        double x, y, z;
-        points.position(idx, x, y, z);
-        const double phase = th.k * x;
-        x -= p.amplitude / th.k * std::sin(phase);
-        x -= std::floor(x);
-        const double u = u0 * (1 + (p.gamma - 1) * p.amplitude * std::cos(phase));
-        set_particle(ps, idx - first, idx, {x, y, z}, {0.0, 0.0, 0.0}, ic.dt0, h0, mass, u);
-    }
     return ic;
 }
 

@@ -3,8 +3,7 @@
 
 #include "exasph/cases/case_info.hpp"
 #include "exasph/cases/initial_conditions.hpp"
-#include "exasph/cases/initial_h.hpp"
-#include "exasph/cases/unit_cube_points.hpp"
+#include "exasph/cases/periodic_gas.hpp"
 #include "exasph/util/error.hpp"
 
 namespace exasph {
@@ -27,29 +26,11 @@ template <class T>
 InitialConditions<T> make_turbulence(const TurbulenceParams& tp, const CaseContext& ctx) {
     if (tp.side < 8) throw input_error("turbulence: -n must be at least 8", true);
     if (!(tp.gamma > 1)) throw input_error("turbulence: gamma must be above 1", true);
-    InitialConditions<T> ic;
+    InitialConditions<T> ic = make_periodic_gas<T>(tp.ng0, tp.gamma, tp.sound_speed, tp.dt0, ctx,
+                                                   [](double*, double&) {});
     ic.name = "turbulence";
-    ic.dt0 = tp.dt0;
     ic.t_end = tp.t_end;
     ic.stir_mach = tp.mach;
-    ic.eos = {EosKind::ideal_gas, tp.gamma, 0.0};
-    ic.box.lo = {T(0), T(0), T(0)};
-    ic.box.hi = {T(1), T(1), T(1)};
-    ic.box.periodic = {true, true, true};
-    const UnitCubePoints points = ctx.points();
-    std::uint64_t first = 0, last = 0;
-    points.share(ctx.rank, ctx.nranks, first, last);
-    const double mass = 1.0 / double(points.size());
-    const double h0 = initial_smoothing_length(points.spacing(), tp.ng0);
-    // c_s^2 = gamma P / rho = gamma (gamma - 1) u.
-    const double u = tp.sound_speed * tp.sound_speed / (tp.gamma * (tp.gamma - 1));
-    auto& ps = ic.particles;
-    ps.resize(last - first);
-    for (std::uint64_t idx = first; idx < last; ++idx) {
-        double x, y, z;
-        points.position(idx, x, y, z);
-        set_particle(ps, idx - first, idx, {x, y, z}, {0.0, 0.0, 0.0}, tp.dt0, h0, mass, u);
-    }
     return ic;
 }
 
