@@ -39,12 +39,8 @@ template <class T>
 EXASPH_HD void add_pair_field(const GravityTreeView<T>& tv, const SofteningView<T>& soft,
                               std::uint32_t j, double x, double y, double z, double h,
                               GravityField& f) {
-    const GravityField g = pair_field(x - tv.x[j], y - tv.y[j], z - tv.z[j], double(tv.m[j]),
-                                      0.5 * (h + double(tv.h[j])), soft);
-    f.ax += g.ax;
-    f.ay += g.ay;
-    f.az += g.az;
-    f.phi += g.phi;
+    add_field(f, pair_field(x - tv.x[j], y - tv.y[j], z - tv.z[j], double(tv.m[j]),
+                            0.5 * (h + double(tv.h[j])), soft));
 }
 
 // Barnes-Hut walk for one particle (position x, smoothing length h, source index `self`, which

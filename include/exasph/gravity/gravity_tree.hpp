@@ -157,9 +157,6 @@ class GravityTree {
     std::size_t num_top() const {
         return num_top_;
     }
-    const GravityImage& image() const {
-        return image_;
-    }
 
   private:
     std::vector<GravityNode<T>> build_subtree(const GravitySources<T>& s, std::uint32_t b,

@@ -172,12 +172,9 @@ EXASPH_HD EXASPH_INLINE GravityField multipole_field(double mass, Q q, S s, doub
 
 EXASPH_HD inline void add_multipole_field(const Multipole& mp, double dx, double dy, double dz,
                                           GravityField& f) {
-    const GravityField g = multipole_field(
-        mp.mass, [&](int c) { return mp.q[c]; }, [&](int c) { return mp.s[c]; }, dx, dy, dz);
-    f.ax += g.ax;
-    f.ay += g.ay;
-    f.az += g.az;
-    f.phi += g.phi;
+    add_field(f, multipole_field(
+                     mp.mass, [&](int c) { return mp.q[c]; }, [&](int c) { return mp.s[c]; }, dx,
+                     dy, dz));
 }
 
 } // namespace exasph
