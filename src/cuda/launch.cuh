@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <cuda_runtime.h>
@@ -20,8 +21,10 @@ namespace cuda_detail {
 using cuda::blocks_for;
 using cuda::kThreads;
 
-// Reduction R of v over the block, written by thread 0 to out[blockIdx.x] (raw shared storage:
-// a value type with default member initialisers cannot be a __shared__ array).
+// Reduction R of the block's values v, written by thread 0 to out[blockIdx.x]: the fold of one
+// run of reduce_tree's fixed tree (sph/reduction.hpp), neighbours first as the host's
+// TreeRunFold does it (raw shared storage: a value type with default member initialisers
+// cannot be a __shared__ array).
 template <class R>
 __device__ inline void block_reduce(typename R::value_type v, typename R::value_type* out) {
     using V = typename R::value_type;
@@ -29,8 +32,8 @@ __device__ inline void block_reduce(typename R::value_type v, typename R::value_
     V* part = reinterpret_cast<V*>(raw);
     part[threadIdx.x] = v;
     __syncthreads();
-    for (unsigned s = kThreads / 2; s > 0; s /= 2) {
-        if (threadIdx.x < s)
+    for (unsigned s = 1; s < kThreads; s *= 2) {
+        if ((threadIdx.x & (2 * s - 1)) == 0)
             part[threadIdx.x] = R::combine(part[threadIdx.x], part[threadIdx.x + s]);
         __syncthreads();
     }
@@ -63,6 +66,22 @@ __global__ void particles_of_reduce(Kernel k, const std::uint32_t* idx, std::uin
     using R = ReductionOf<Kernel>;
     const std::uint32_t s = blockIdx.x * blockDim.x + threadIdx.x;
     block_reduce<R>(s < n ? R::combine(R::identity(), k(idx[s])) : R::identity(), out);
+}
+
+// Block b folds run b of the values k(i) ...
+template <class Kernel>
+__global__ void tree_leaves(Kernel k, std::uint32_t n, ResultOf<Kernel>* out) {
+    using R = ReductionOf<Kernel>;
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    block_reduce<R>(i < n ? k(i) : R::identity(), out);
+}
+
+// ... and, on the later levels, run b of the values in[0, n).
+template <class R>
+__global__ void tree_level(const typename R::value_type* in, std::uint32_t n,
+                           typename R::value_type* out) {
+    const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+    block_reduce<R>(i < n ? in[i] : R::identity(), out);
 }
 
 // Slot s of the lists is particle member[s] (member null: s); `out` only for a kernel that
@@ -155,6 +174,30 @@ CudaLauncher::reduce_of(const std::uint32_t* idx, std::size_t n, const Kernel& k
                                                                         results.device());
     cuda::finish("running a reduction over the active particles");
     return results.combined();
+}
+
+template <class Kernel>
+requires kListed<Kernel, CudaLauncher::Listed::reduce_tree> ResultOf<Kernel>
+CudaLauncher::reduce_tree(std::size_t n, const Kernel& k) {
+    using R = ReductionOf<Kernel>;
+    using V = ResultOf<Kernel>;
+    static_assert(kTreeFan == cuda_detail::kThreads, "a block folds one run of the tree");
+    if (n == 0) return R::identity();
+    std::size_t m = tree_runs(n); // values on the current level
+    DeviceBuffer level, next;
+    V* values = static_cast<V*>(level.reserve(m * sizeof(V)));
+    V* folded = static_cast<V*>(next.reserve(tree_runs(m) * sizeof(V)));
+    cuda_detail::tree_leaves<<<unsigned(m), cuda_detail::kThreads>>>(k, std::uint32_t(n), values);
+    for (; m > 1; m = tree_runs(m)) {
+        cuda_detail::tree_level<R>
+            <<<unsigned(tree_runs(m)), cuda_detail::kThreads>>>(values, std::uint32_t(m), folded);
+        std::swap(values, folded);
+    }
+    cuda::finish("running a tree reduction");
+    V total;
+    cuda::check(cudaMemcpy(&total, values, sizeof(V), cudaMemcpyDeviceToHost),
+                "reading a tree reduction");
+    return total;
 }
 
 template <class T, class Kernel>

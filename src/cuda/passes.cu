@@ -16,7 +16,7 @@ namespace exasph {
 namespace cuda_detail {
 
 // How a listed kernel is launched: the lists of sph/pass_kernels.hpp.
-enum class Launch { each, each_of, reduce, reduce_of, neighbours };
+enum class Launch { each, each_of, reduce, reduce_of, reduce_tree, neighbours };
 
 // The launcher's function for kernel K launched as `how`.
 template <Launch how, class K>
@@ -25,6 +25,7 @@ constexpr auto launcher_function() {
     if constexpr (how == Launch::each_of) return &CudaLauncher::for_each_of<K>;
     if constexpr (how == Launch::reduce) return &CudaLauncher::reduce<K>;
     if constexpr (how == Launch::reduce_of) return &CudaLauncher::reduce_of<K>;
+    if constexpr (how == Launch::reduce_tree) return &CudaLauncher::reduce_tree<K>;
     if constexpr (how == Launch::neighbours)
         return &CudaLauncher::for_each_neighbourhood<double, K>;
 }
@@ -46,6 +47,7 @@ template struct Instances<Launch::each, Listed::each>;
 template struct Instances<Launch::each_of, Listed::each_of>;
 template struct Instances<Launch::reduce, Listed::reduce>;
 template struct Instances<Launch::reduce_of, Listed::reduce_of>;
+template struct Instances<Launch::reduce_tree, Listed::reduce_tree>;
 template struct Instances<Launch::neighbours, Listed::neighbours>;
 
 // Every pass of sph/passes.hpp and sph/block_passes.hpp once on the CUDA launcher, as the step

@@ -50,6 +50,7 @@ void instantiate(const std::uint32_t* lists, double* out) {
     particle_passes(typename P::each_of{}, out);
     particle_passes(typename P::reduce{}, out);
     particle_passes(typename P::reduce_of{}, out);
+    particle_passes(typename P::reduce_tree{}, out);
 }
 
 } // namespace

@@ -19,8 +19,8 @@ MAX_FUNCTION_LINES = 80
 
 # The layers of include/exasph/ in order (docs/architecture.md, "Layers"): a layer may include
 # only the layers before it, and not these either:
-LAYERS = ["util", "sfc", "config", "particles", "tree", "domain", "kernel", "sph", "gravity",
-          "exact", "cases", "io", "render", "sim", "glass", "run"]
+LAYERS = ["util", "sfc", "config", "particles", "tree", "domain", "kernel", "exact", "sph",
+          "gravity", "cases", "io", "render", "sim", "glass", "run"]
 ALSO_FORBIDDEN = {
     "sph": ["domain"],           # kernels and launchers know nothing of the decomposition
     "gravity": ["sph"],          # the kernel table lives in kernel/

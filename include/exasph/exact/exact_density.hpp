@@ -8,6 +8,7 @@
 
 #include "exasph/exact/noh.hpp"
 #include "exasph/exact/sedov.hpp"
+#include "exasph/util/annotate.hpp"
 
 namespace exasph {
 
@@ -15,6 +16,9 @@ namespace exasph {
 // for every particle at every step: the Sedov profile is self-similar, so one table of
 // G(xi) = rho / rho_1 on xi = r / R(t) serves all times.
 class ExactDensity {
+    enum class Kind { none, sedov, noh };
+    static constexpr int kTable = 20000;
+
   public:
     static ExactDensity sedov(double gamma, double energy, double rho1) {
         ExactDensity e;
@@ -34,39 +38,49 @@ class ExactDensity {
 
     bool valid() const { return kind_ != Kind::none; }
 
-    // rho(r) at one time t: the shock radius R(t) (a power, ~50 ns) once, then per particle a
-    // table lookup (the diagnostics evaluate it for every particle at every step).
+    // rho(r) at one time t, as a value that host and device code evaluate (the diagnostics
+    // kernel, every particle at every step): the shock radius R(t) (a power) once, then per
+    // particle a table lookup. `table` is G on its kTable + 1 points (table() or a copy of it in
+    // memory the device reads); it must outlive the value.
     class AtTime {
       public:
-        double operator()(double r) const {
-            if (e_.kind_ == Kind::noh) return e_.noh_.at(r, t_).rho;
-            if (rs_ <= 0) return e_.rho1_;
+        AtTime() = default; // no exact solution: valid() is false
+        EXASPH_HD bool valid() const { return kind_ != Kind::none; }
+        EXASPH_HD double operator()(double r) const {
+            if (kind_ == Kind::noh) return noh_.at(r, t_).rho;
+            if (rs_ <= 0) return rho1_;
             const double xi = r / rs_;
-            if (xi >= 1) return e_.rho1_;
+            if (xi >= 1) return rho1_;
             const double s = xi * kTable;
             const int i = int(s);
             const double f = s - i;
-            const std::vector<double>& g = *e_.table_;
-            return e_.rho1_ * (g[i] + f * (g[i + 1] - g[i]));
+            return rho1_ * (g_[i] + f * (g_[i + 1] - g_[i]));
         }
 
       private:
         friend class ExactDensity;
-        AtTime(const ExactDensity& e, double t) : e_(e), t_(t) {
+        AtTime(const ExactDensity& e, double t, const double* table)
+            : kind_(e.kind_), t_(t), rho1_(e.rho1_), g_(table), noh_(e.noh_) {
             if (e.kind_ == Kind::sedov && t > 0)
                 rs_ = e.xi0_ * std::pow(e.energy_ * t * t / e.rho1_, 0.2);
         }
-        const ExactDensity& e_;
-        double t_;
+        Kind kind_ = Kind::none;
+        double t_ = 0;
         double rs_ = 0; // Sedov's shock radius (0: before the blast, or not Sedov)
+        double rho1_ = 1;
+        const double* g_ = nullptr;
+        NohSolution noh_;
     };
-    AtTime at(double t) const { return AtTime(*this, t); }
+    AtTime at(double t) const { return AtTime(*this, t, table_ ? table_->data() : nullptr); }
+    // The same, reading the Sedov table from `table` (a copy of table(), e.g. in device memory).
+    AtTime at(double t, const double* table) const { return AtTime(*this, t, table); }
+    // Sedov's G(xi) on kTable + 1 points (empty for other cases).
+    const std::vector<double>& table() const { return table_ ? *table_ : kNoTable; }
 
     double operator()(double r, double t) const { return at(t)(r); }
 
   private:
-    enum class Kind { none, sedov, noh };
-    static constexpr int kTable = 20000;
+    static inline const std::vector<double> kNoTable{};
     Kind kind_ = Kind::none;
     double xi0_ = 0, energy_ = 0, rho1_ = 1;
     std::shared_ptr<const std::vector<double>> table_;

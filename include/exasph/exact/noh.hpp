@@ -1,6 +1,8 @@
 #pragma once
 #include <cmath>
 
+#include "exasph/util/annotate.hpp"
+
 namespace exasph {
 
 // Noh implosion (physics.md §9.3), spherical: cold gas of density rho0 falling in at speed v0. The
@@ -13,12 +15,12 @@ struct NohSolution {
     struct State {
         double rho, v, p, u;
     };
-    double shock_radius(double t) const { return 0.5 * (gamma - 1) * v0 * t; }
-    double post_shock_density() const {
+    EXASPH_HD double shock_radius(double t) const { return 0.5 * (gamma - 1) * v0 * t; }
+    EXASPH_HD double post_shock_density() const {
         double k = (gamma + 1) / (gamma - 1);
         return rho0 * k * k * k;
     }
-    State at(double r, double t) const {
+    EXASPH_HD State at(double r, double t) const {
         if (r < shock_radius(t)) {
             double rho = post_shock_density(), u = 0.5 * v0 * v0;
             return {rho, 0.0, (gamma - 1) * rho * u, u};

@@ -107,9 +107,9 @@ void read_derived_fields(const h5::File& file, ParticleSet<T>& ps, MPI_Comm comm
     std::vector<Field> required, optional;
     for (Field f : fields_with_role(kDerived))
         (field_info(f).roles & kOptional ? optional : required).push_back(f);
-    const std::vector<std::uint64_t> ids = ps.id;
+    const std::vector<std::uint64_t> ids(ps.id.begin(), ps.id.end());
     read_particle_fields(derived, ps, required, optional, true, comm);
-    int same = ps.id == ids;
+    int same = std::equal(ps.id.begin(), ps.id.end(), ids.begin(), ids.end());
     MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm); // all ranks: 1
     if (!same) throw input_error(file.path() + ": /derived/id differs from /state/id", true);
 }

@@ -107,7 +107,8 @@ read_particle_fields(const h5::Group& g, ParticleSet<T>& ps, const std::vector<F
     }
     if (h5::has_link(g, "id")) {
         check_length("id", true);
-        ps.id = h5::read_u64(g, "id", lo, hi - lo);
+        const std::vector<std::uint64_t> ids = h5::read_u64(g, "id", lo, hi - lo);
+        ps.id.assign(ids.begin(), ids.end());
     } else if (require_id) {
         h5::dataset_length(g, "id", true); // throws: missing dataset
     } else {

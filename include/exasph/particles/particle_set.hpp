@@ -136,7 +136,7 @@ class ParticleSet {
             gather(f, order, scratch);
             f.swap(scratch);
         }
-        std::vector<std::uint64_t> new_id(order.size());
+        FieldArray<std::uint64_t> new_id(order.size());
         gather(id, order, new_id);
         id.swap(new_id);
         resize(order.size());
@@ -164,7 +164,7 @@ class ParticleSet {
         }
     }
 
-    std::vector<std::uint64_t> id;
+    FieldArray<std::uint64_t> id; // where the fields are: a device checks it too
 
   private:
     // A permutation of the same particles that moves few of them (between two sub-steps of block

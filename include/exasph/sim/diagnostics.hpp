@@ -8,9 +8,9 @@
 #include "exasph/domain/collectives.hpp"
 #include "exasph/exact/exact_density.hpp"
 #include "exasph/particles/particle_set.hpp"
+#include "exasph/particles/particle_view.hpp"
 #include "exasph/sph/block_step.hpp"
-#include "exasph/sph/smoothing_length.hpp"
-#include "exasph/util/block_sum.hpp"
+#include "exasph/sph/diagnostics_kern.hpp"
 
 namespace exasph {
 
@@ -66,87 +66,43 @@ struct Diagnostics {
     StepWork work;
 };
 
-// Layout of the diagnostics reduction: SumMax elements 0..18 below, then six for the extent of
-// the positions (which gives next step's box without another collective).
+// Layout of the diagnostics reduction: SumMax elements 0..18 (local_diagnostics), then six for
+// the extent of the positions (which gives next step's box without another collective).
 inline constexpr std::size_t kDiagElements = 19;
 inline constexpr std::size_t kDiagWithExtent = kDiagElements + 6;
 
-// This rank's contribution over its owned particles [0, n_owned); sums are independent of the
-// thread count (block_sum).
+// This rank's contribution over its owned particles [0, n_owned), reduced by the launcher L
+// along its fixed tree (DiagnosticsKernel, sph/diagnostics_kern.hpp): the same bits for every
+// launcher and thread count. Writes the kDiagElements elements below and, after them, the six
+// of the positions' extent (domain/box_extent.hpp's layout).
 // The density error needs rho and the positions it was computed at: after the update those
-// are x_{n-1} (= x_n of the step) at time t - dt.
-template <class T>
-void local_diagnostics(const ParticleSet<T>& ps, std::size_t n_owned, std::size_t n_halo,
-                       const ExactDensity& exact, double t_rho, double ng0, SumMax* out) {
-    const T *x = ps.data(Field::x), *y = ps.data(Field::y), *z = ps.data(Field::z);
-    const T *vx = ps.data(Field::vx), *vy = ps.data(Field::vy), *vz = ps.data(Field::vz);
-    const T *m = ps.data(Field::m), *u = ps.data(Field::u);
-    // nc, c and rho in either storage (float, or double with --double-precision).
-    auto nc = [&](std::size_t i) { return ps.value(Field::nc, i); };
-    auto cs = [&](std::size_t i) { return ps.value(Field::c, i); };
-    auto rho = [&](std::size_t i) { return ps.value(Field::rho, i); };
-    const T* phi = ps.data(Field::phi);
-    const T* stir = ps.enabled(Field::stir) ? ps.data(Field::stir) : nullptr;
-    const T *ax = ps.data(Field::ax), *ay = ps.data(Field::ay), *az = ps.data(Field::az),
-            *du = ps.data(Field::du);
-    const T* gsoft = ps.enabled(Field::gsoft) ? ps.data(Field::gsoft) : nullptr;
-    const T* kx = ps.enabled(Field::kx) ? ps.data(Field::kx) : nullptr;
-    // physics.md §8's softening follows h: E_pot moves by m_a zeta_a dh_a. The density pass left
-    // gsoft_a = zeta_a (-h_a / (3 k_a Omega_a)) and physics.md §2 made dh_a / h_a = g(nc_a) - 1
-    // from this step's nc, so m_a |zeta_a dh_a| = 3 m_a k_a Omega_a |gsoft_a (g - 1)|, Omega_a ~ 1.
-    auto softening_moved = [&](std::size_t i) {
-        if (!gsoft) return 0.0;
-        const double k = kx ? double(kx[i]) : rho(i);
-        const double g = update_smoothing_length(1.0, nc(i), ng0);
-        return 3 * double(m[i]) * k * std::abs(double(gsoft[i]) * (g - 1));
-    };
-    auto s = block_sum<16>(n_owned, [&](std::size_t i) -> std::array<double, 16> {
-        const double mi = m[i];
-        const double v2 = double(vx[i]) * vx[i] + double(vy[i]) * vy[i] + double(vz[i]) * vz[i];
-        const double va = double(vx[i]) * ax[i] + double(vy[i]) * ay[i] + double(vz[i]) * az[i];
-        const double a2 = double(ax[i]) * ax[i] + double(ay[i]) * ay[i] + double(az[i]) * az[i];
-        return {0.5 * mi * v2,
-                mi * u[i],
-                mi * vx[i],
-                mi * vy[i],
-                mi * vz[i],
-                mi * (double(y[i]) * vz[i] - double(z[i]) * vy[i]),
-                mi * (double(z[i]) * vx[i] - double(x[i]) * vz[i]),
-                mi * (double(x[i]) * vy[i] - double(y[i]) * vx[i]),
-                nc(i),
-                phi ? 0.5 * mi * phi[i] : 0.0, // each pair counted from both sides (physics.md §8)
-                mi,
-                mi * (std::abs(va) + std::abs(double(du[i]))),
-                mi * (std::sqrt(v2) + cs(i)),
-                mi * std::sqrt(a2),
-                stir ? mi * stir[i] : 0.0,
-                softening_moved(i)};
+// are x_{n-1} (= x_n of the step), so `exact` is the solution at t - dt.
+template <class L, class T>
+void local_diagnostics(ParticleSet<T>& ps, std::size_t n_owned, std::size_t n_halo,
+                       const ExactDensity::AtTime& exact, double ng0, SumMax* out) {
+    const DiagnosticsRecord r = with_view(ps, [&](auto p) {
+        using N = typename decltype(p)::narrow_type;
+        return L::reduce_tree(n_owned, DiagnosticsKernel<T, N>{p, exact, ng0});
     });
-    double nc_lo = std::numeric_limits<double>::infinity(), nc_hi = -nc_lo;
-    for (std::size_t i = 0; i < n_owned; ++i) {
-        nc_lo = std::min(nc_lo, nc(i));
-        nc_hi = std::max(nc_hi, nc(i));
-    }
-    for (int k = 0; k < 8; ++k) out[k] = {s[k], -std::numeric_limits<double>::infinity()};
-    out[8] = {s[8], nc_hi};
-    out[9].sum = double(n_owned);
-    out[9].set_min(nc_lo);
-    double ratio = n_owned > 0 ? double(n_halo) / double(n_owned) : 0.0;
+    constexpr double kNone = -std::numeric_limits<double>::infinity();
+    const DiagSum first[8] = {DiagSum::ekin, DiagSum::eint, DiagSum::px, DiagSum::py,
+                              DiagSum::pz,   DiagSum::lx,   DiagSum::ly, DiagSum::lz};
+    for (int k = 0; k < 8; ++k) out[k] = {r[first[k]], kNone};
+    out[8] = {r[DiagSum::nc], r[DiagMax::nc]};
+    out[9] = {double(n_owned), r[DiagMax::neg_nc]}; // the max of -nc: the least nc
+    const double ratio = n_owned > 0 ? double(n_halo) / double(n_owned) : 0.0;
     out[10] = {ratio, ratio};
-    const T *xp = ps.data(Field::x_m1), *yp = ps.data(Field::y_m1), *zp = ps.data(Field::z_m1);
-    const auto exact_rho = exact.at(t_rho);
-    double l1 = 0, rho_max = -std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < n_owned; ++i) {
-        rho_max = std::max(rho_max, rho(i));
-        if (exact.valid()) {
-            double r =
-                std::sqrt(double(xp[i]) * xp[i] + double(yp[i]) * yp[i] + double(zp[i]) * zp[i]);
-            l1 += std::abs(rho(i) - exact_rho(r));
-        }
+    out[11] = {r[DiagSum::l1_rho], r[DiagMax::rho]};
+    out[12] = {r[DiagSum::epot], kNone};
+    const DiagSum scales[6] = {DiagSum::mass,      DiagSum::power_abs,  DiagSum::momentum_abs,
+                               DiagSum::force_abs, DiagSum::stir_power, DiagSum::soft_abs};
+    for (int k = 0; k < 6; ++k) out[13 + k] = {r[scales[k]], kNone};
+    const DiagMax hi[3] = {DiagMax::x, DiagMax::y, DiagMax::z};
+    const DiagMax neg_lo[3] = {DiagMax::neg_x, DiagMax::neg_y, DiagMax::neg_z};
+    for (int d = 0; d < 3; ++d) {
+        out[kDiagElements + d] = {0.0, r[hi[d]]};
+        out[kDiagElements + 3 + d] = {0.0, r[neg_lo[d]]};
     }
-    out[11] = {l1, rho_max};
-    out[12] = {s[9], -std::numeric_limits<double>::infinity()};
-    for (int k = 0; k < 6; ++k) out[13 + k] = {s[10 + k], -std::numeric_limits<double>::infinity()};
 }
 
 inline Diagnostics diagnostics_from(const SumMax* e, int nranks) {

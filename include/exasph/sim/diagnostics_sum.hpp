@@ -12,17 +12,16 @@ namespace exasph {
 // The diagnostics collective (physics.md §10): this rank's sums of its n owned particles, the
 // run-control flags, the step's work (StepWork) and the particles' extent, reduced at once; the
 // extent fits the open axes of `box` (next step's box without a collective of its own).
-// t_start: the time the step began (the exact solution's L1 error; after_step: false for the
-// initial row, which has none).
-template <class T>
-Diagnostics sum_diagnostics(const ParticleSet<T>& ps, std::size_t n, std::size_t n_halo,
-                            const ExactDensity& exact, double t_start, bool after_step, double ng0,
+// `exact`: the exact solution at the time the step began (its L1 error; after_step: false for
+// the initial row, which has none). The particles' terms are reduced by the launcher L.
+template <class L, class T>
+Diagnostics sum_diagnostics(ParticleSet<T>& ps, std::size_t n, std::size_t n_halo,
+                            const ExactDensity::AtTime& exact, bool after_step, double ng0,
                             const StepWork& work, ControlFlags& flags, Box<T>& box,
                             Collectives& coll) {
     std::vector<SumMax> e(kDiagWithExtent + kNumControlFlags + StepWork::kElements);
     work.pack(e.data() + kDiagWithExtent + kNumControlFlags);
-    local_diagnostics(ps, n, n_halo, exact, t_start, ng0, e.data());
-    local_extent(ps, n, e.data() + kDiagElements);
+    local_diagnostics<L>(ps, n, n_halo, exact, ng0, e.data());
     flags.pack(e.data() + kDiagWithExtent);
     coll.allreduce_sum_max(e);
     flags.unpack(e.data() + kDiagWithExtent);

@@ -53,8 +53,8 @@ struct StepStart {
 // four places (docs/architecture.md "Step vs. safety"): begin_step, phase_ended (from the one
 // call that ends each phase), keep_point (after a sync whose vote was clean) and conclude (the
 // verdict, with the rollback when the step does not stand); everything else about corruption
-// lives here.
-template <class T>
+// lives here. The seals' hashes run on the launcher L.
+template <class T, class L = DefaultLauncher>
 class SafetyNet {
   public:
     SafetyNet(const Config& cfg, int rank)
@@ -212,7 +212,7 @@ class SafetyNet {
     std::int64_t every_;
     int rank_;
     std::int64_t step_ = 0; // the step in progress
-    StepSeals<T> seals_;
+    StepSeals<T, L> seals_;
     std::string late_change_; // what the seals found after the diagnostics, reported next step
     StateGuard<T> guard_;
     EnergyWatchdog watchdog_;

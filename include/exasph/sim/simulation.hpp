@@ -55,7 +55,8 @@ class Simulation {
           domain_(comm, std::uint32_t(cfg.global_bucket), std::uint32_t(cfg.leaf_size), cfg.curve),
           safety_(cfg, domain_.rank()),
           safety_on_(cfg.on_sdc != SdcPolicy::off), clock_{ic.dt0, ic.dt0, 0.0, -1.0, 0},
-          sched_(cfg.sync_every, cfg.diagnostics_every), exact_(std::move(ic.exact)) {
+          sched_(cfg.sync_every, cfg.diagnostics_every), exact_(std::move(ic.exact)),
+          exact_table_(exact_.table().begin(), exact_.table().end()) {
         enable_run_fields(ps_, cfg, eos_, domain_.collectives());
         start_gravity(gravity_, ps_, kernel_, cfg, cfg.G >= 0 ? cfg.G : ic.G);
         if (cfg.timesteps == TimeStepping::block) // the case's stirring when not given
@@ -94,8 +95,8 @@ class Simulation {
 
     // Silent-data-corruption handling (sim/safety.hpp); recovered(): the last step() rolled
     // back (then diagnostics() are those of the step rolled back to).
-    SafetyNet<T>& safety() { return safety_; }
-    const SafetyNet<T>& safety() const { return safety_; }
+    SafetyNet<T, L>& safety() { return safety_; }
+    const SafetyNet<T, L>& safety() const { return safety_; }
     bool recovered() const { return recovered_; }
     // Whether the last step summed the diagnostics (else only their step, time and dt are new).
     bool summed() const { return summed_; }
@@ -196,7 +197,7 @@ class Simulation {
     KernelTable<T> kernel_;
     typename L::template Lists<T> nlists_; // the launcher's kind of neighbour lists
     Domain<T> domain_;
-    SafetyNet<T> safety_;
+    SafetyNet<T, L> safety_;
     PhaseTimer<kNumPhases> timer_;
     Diagnostics diag_, before_; // before_: the last step's, for the watchdog
     bool advanced_ = false;     // the step in progress has updated the state
@@ -210,6 +211,7 @@ class Simulation {
     SyncSchedule sched_;
     ControlFlags flags_;
     ExactDensity exact_;
+    FieldArray<double> exact_table_; // exact_'s table where the diagnostics kernel reads it
     std::optional<GravitySolver<T>> gravity_;
     std::optional<Stirring> stirring_;
     std::optional<BlockClock<T, L>> blocks_; // --timesteps block

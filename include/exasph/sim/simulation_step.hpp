@@ -130,9 +130,9 @@ void Simulation<T, L>::diagnose(double dt, bool summed) {
     const double waited = domain_.comm_record().waited_in_step(); // compute: the rest
     work_.compute_sum = work_.compute_max = std::max(0.0, timer_.step_total() - waited);
     if (summed)
-        diag_ =
-            sum_diagnostics(ps_, n_owned(), domain_.n_halo(), exact_, clock_.time - dt,
-                            clock_.step > 0, cfg_.ng0, work_, flags_, box_, domain_.collectives());
+        diag_ = sum_diagnostics<L>(
+            ps_, n_owned(), domain_.n_halo(), exact_.at(clock_.time - dt, exact_table_.data()),
+            clock_.step > 0, cfg_.ng0, work_, flags_, box_, domain_.collectives());
     diag_.step = clock_.step, diag_.time = clock_.time, diag_.dt = dt;
     if (!summed) return;
     if (stirring_) stirring_->add_energy(dt * diag_.stir_power);

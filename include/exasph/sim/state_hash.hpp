@@ -1,10 +1,14 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "exasph/particles/particle_set.hpp"
+#include "exasph/sph/field_hash_kern.hpp"
+#include "exasph/sph/launch.hpp"
 #include "exasph/util/checksum.hpp"
+#include "exasph/util/error.hpp"
 
 namespace exasph {
 
@@ -42,27 +46,44 @@ void state_hash_block(const ParticleSet<T>& ps, const std::vector<Field>& fields
     }
 }
 
-// A particle's hash folded to the 32 bits that the state guard keeps.
-inline std::uint32_t fold_hash(std::uint64_t h) {
-    return std::uint32_t(h ^ (h >> 32));
+// The arrays of `fields` for FieldHashKernel, each in its storage.
+template <class T>
+HashedFields hashed_fields(const ParticleSet<T>& ps, const std::vector<Field>& fields) {
+    if (fields.size() > std::size_t(HashedFields::kMost))
+        throw Error("hashing " + std::to_string(fields.size()) + " fields: at most " +
+                    std::to_string(HashedFields::kMost));
+    HashedFields h;
+    for (Field f : fields) {
+        const bool single = ps.stored_single(f);
+        h.data[h.count] = single ? static_cast<const void*>(ps.narrow(f)) : ps.data(f);
+        h.bytes[h.count++] = std::uint8_t(single ? sizeof(float) : sizeof(T));
+    }
+    return h;
 }
 
 // Sum (mod 2^64) of the folded particle_state_hash over `fields` of particles [0, n): it does
 // not depend on their order, and over the state fields it is the sum of the state guard's seal.
-template <class T>
+// The CPU launcher hashes a block of particles one field at a time (vectorised); the GPU path's
+// launchers run FieldHashKernel where the fields are (the same sum:
+// tests/unit/sim/test_state_hash).
+template <class L = DefaultLauncher, class T>
 std::uint64_t field_hash_sum(const ParticleSet<T>& ps, const std::vector<Field>& fields,
                              std::size_t n) {
-    const auto blocks = std::int64_t((n + kHashBlock - 1) / kHashBlock);
-    std::uint64_t sum = 0;
+    if constexpr (L::kBackend != Backend::openmp) {
+        return L::reduce(n, FieldHashKernel{ps.id.data(), hashed_fields(ps, fields)});
+    } else {
+        const auto blocks = std::int64_t((n + kHashBlock - 1) / kHashBlock);
+        std::uint64_t sum = 0;
 #pragma omp parallel for schedule(static) reduction(+ : sum)
-    for (std::int64_t b = 0; b < blocks; ++b) {
-        std::uint64_t h[kHashBlock];
-        const std::size_t first = std::size_t(b) * kHashBlock;
-        const std::size_t count = std::min(kHashBlock, n - first);
-        state_hash_block(ps, fields, first, count, h);
-        for (std::size_t k = 0; k < count; ++k) sum += fold_hash(h[k]);
+        for (std::int64_t b = 0; b < blocks; ++b) {
+            std::uint64_t h[kHashBlock];
+            const std::size_t first = std::size_t(b) * kHashBlock;
+            const std::size_t count = std::min(kHashBlock, n - first);
+            state_hash_block(ps, fields, first, count, h);
+            for (std::size_t k = 0; k < count; ++k) sum += fold_hash(h[k]);
+        }
+        return sum;
     }
-    return sum;
 }
 
 template <class T>

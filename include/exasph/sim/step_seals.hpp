@@ -25,8 +25,9 @@ namespace exasph {
 //   state          update                before the h update      -
 //   state          h_update              the guard's seal (end)   diagnostics
 // The first sync-to-update state seal is not taken in step 1, whose density pass sets the
-// Tait reference state and the first volume weights. Each costs a pass over its fields.
-template <class T>
+// Tait reference state and the first volume weights. Each costs a pass over its fields, run by
+// the launcher L (field_hash_sum: on the GPU path where the fields are).
+template <class T, class L = DefaultLauncher>
 class StepSeals {
   public:
     // The start of step `step`: no seal of an earlier (or rolled-back) step counts.
@@ -98,14 +99,14 @@ class StepSeals {
     enum Slot { kSettled, kDensitySet, kIadSet, kAccelerations, kUpdated, kFinal, kSlots };
 
     void take(Slot s, const ParticleSet<T>& ps, const std::vector<Field>& fields, std::size_t n) {
-        sums_[s] = field_hash_sum(ps, fields, n);
+        sums_[s] = field_hash_sum<L>(ps, fields, n);
         armed_[s] = true;
     }
     std::string compare(Slot s, const ParticleSet<T>& ps, const std::vector<Field>& fields,
                         std::size_t n, const char* what) {
         if (!armed_[s]) return "";
         armed_[s] = false;
-        if (field_hash_sum(ps, fields, n) == sums_[s]) return "";
+        if (field_hash_sum<L>(ps, fields, n) == sums_[s]) return "";
         return what;
     }
 

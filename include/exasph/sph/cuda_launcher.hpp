@@ -37,6 +37,11 @@ struct CudaLauncher {
     template <class Kernel>
     requires kListed<Kernel, Listed::reduce_of>
     static ResultOf<Kernel> reduce_of(const std::uint32_t* idx, std::size_t n, const Kernel& k);
+    // Along the fixed tree of sph/reduction.hpp (a block of kTreeFan threads per run, each level
+    // on the device; only the last value is copied to the host).
+    template <class Kernel>
+    requires kListed<Kernel, Listed::reduce_tree>
+    static ResultOf<Kernel> reduce_tree(std::size_t n, const Kernel& k);
     template <class T, class Kernel>
     requires kListed<Kernel, Listed::neighbours>
     static ResultOf<Kernel> for_each_neighbourhood(const DeviceLists<T>& nl, const Kernel& k);

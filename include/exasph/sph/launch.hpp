@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <limits>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "exasph/tree/batch_lists.hpp"
 #include "exasph/tree/neighbour_groups.hpp"
@@ -21,6 +23,8 @@
 // (sph/reduction.hpp: MinOf, MaxOf, SumOf, FirstIndexWhere). Every launcher provides:
 //   for_each(n, k), for_each_of(idx, n, k)       k(i) for i < n, or for i in idx[0, n)
 //   reduce(n, k), reduce_of(idx, n, k)           the same, returning the kernel's reduction
+//   reduce_tree(n, k)                            reduce(n, k) combined along the fixed tree of
+//                                                sph/reduction.hpp: the same bits everywhere
 //   for_each_neighbourhood(lists, k)             k(i, neighbours) for every list, returning the
 //                                                reduction when the kernel has one
 // and the data-parallel primitives of sph/primitives.hpp (scan, sort by key, gather, scatter).
@@ -87,7 +91,37 @@ struct OmpParticleLoops : OmpPrimitives {
         return reduce_slots(n, k, [](std::int64_t s) { return ParticleIndex(s); });
     }
 
+    // The kernel's reduction over [0, n) along the fixed tree (kTreeFan, sph/reduction.hpp).
+    template <class Kernel>
+    static ResultOf<Kernel> reduce_tree(std::size_t n, const Kernel& k) {
+        using R = ReductionOf<Kernel>;
+        static_assert(kReduces<Kernel>, "a reduction needs a kernel with a Reduction");
+        std::vector<ResultOf<Kernel>> level =
+            fold_tree_level<R>(n, [&k](std::size_t i) { return k(ParticleIndex(i)); });
+        while (level.size() > 1) {
+            const std::vector<ResultOf<Kernel>> below = std::move(level);
+            level = fold_tree_level<R>(below.size(), [&below](std::size_t i) { return below[i]; });
+        }
+        return level.empty() ? R::identity() : level[0];
+    }
+
   private:
+    // One level of the tree: the values value(0) .. value(n - 1) folded kTreeFan at a time.
+    template <class R, class Value>
+    static std::vector<typename R::value_type> fold_tree_level(std::size_t n, const Value& value) {
+        std::vector<typename R::value_type> folded(tree_runs(n));
+        const auto runs = static_cast<std::int64_t>(folded.size());
+#pragma omp parallel for schedule(static)
+        for (std::int64_t r = 0; r < runs; ++r) {
+            TreeRunFold<R> run;
+            const std::size_t first = std::size_t(r) * kTreeFan;
+            for (std::size_t i = first; i < first + kTreeFan; ++i)
+                run.add(i < n ? value(i) : R::identity());
+            folded[std::size_t(r)] = run.value();
+        }
+        return folded;
+    }
+
     // The kernel's reduction over particles particle(s), s in [0, n).
     template <class Kernel, class Particle>
     static ResultOf<Kernel> reduce_slots(std::size_t n, const Kernel& k, Particle particle) {

@@ -3,6 +3,8 @@
 
 #include "exasph/sph/block_kern.hpp"
 #include "exasph/sph/density_kern.hpp"
+#include "exasph/sph/diagnostics_kern.hpp"
+#include "exasph/sph/field_hash_kern.hpp"
 #include "exasph/sph/iad_kern.hpp"
 #include "exasph/sph/momentum_energy_kern.hpp"
 #include "exasph/sph/skin_kern.hpp"
@@ -62,6 +64,8 @@ struct PassKernelsOf {
     using reduce =
         KernelList<AccelerationStepKernel<T, N>, SkinUseKernel<T, N>, OpenStepKernel<T, N>>;
     using reduce_of = KernelList<CloseStepKernel<T, N>>;
+    // Reduced along the fixed tree (reduce_tree: the same bits on every launcher).
+    using reduce_tree = KernelList<DiagnosticsKernel<T, N>>;
 };
 
 // Both storages of the derived fields (float, double), and the kernels that read no derived
@@ -73,10 +77,11 @@ struct PassKernels {
     using neighbours = decltype(join(typename F::neighbours{}, typename D::neighbours{}));
     using each = decltype(join(typename F::each{}, typename D::each{}));
     using each_of = decltype(join(typename F::each_of{}, typename D::each_of{}));
-    using reduce =
-        decltype(join(typename F::reduce{}, typename D::reduce{},
-                      KernelList<ValueKernel<T, MinOf<double>>, ValueKernel<T, MaxOf<double>>>{}));
+    using reduce = decltype(join(typename F::reduce{}, typename D::reduce{},
+                                 KernelList<ValueKernel<T, MinOf<double>>,
+                                            ValueKernel<T, MaxOf<double>>, FieldHashKernel>{}));
     using reduce_of = decltype(join(typename F::reduce_of{}, typename D::reduce_of{}));
+    using reduce_tree = decltype(join(typename F::reduce_tree{}, typename D::reduce_tree{}));
 };
 
 } // namespace exasph

@@ -3,10 +3,12 @@
 #include <cstring>
 #include <string>
 
+#include "exasph/util/annotate.hpp"
+
 namespace exasph {
 
 // 64-bit mixing function (the splitmix64 finaliser): every input bit affects every output bit.
-inline std::uint64_t mix64(std::uint64_t x) {
+EXASPH_HD inline std::uint64_t mix64(std::uint64_t x) {
     x += 0x9e3779b97f4a7c15ull;
     x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
     x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
@@ -15,7 +17,7 @@ inline std::uint64_t mix64(std::uint64_t x) {
 
 // Bit pattern of a floating-point value (float or double), widened to 64 bits.
 template <class T>
-std::uint64_t float_bits(T v) {
+EXASPH_HD std::uint64_t float_bits(T v) {
     if constexpr (sizeof(T) == 8) {
         std::uint64_t b;
         std::memcpy(&b, &v, 8);
@@ -25,6 +27,11 @@ std::uint64_t float_bits(T v) {
         std::memcpy(&b, &v, 4);
         return b;
     }
+}
+
+// A particle's 64-bit hash folded to the 32 bits that the state guard keeps and the seals sum.
+EXASPH_HD inline std::uint32_t fold_hash(std::uint64_t h) {
+    return std::uint32_t(h ^ (h >> 32));
 }
 
 // Chains values into one hash: order matters within a chain.

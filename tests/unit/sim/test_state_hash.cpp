@@ -1,8 +1,10 @@
 // Issue 8 / issue 7: the per-particle state hashes, computed a block of particles at a time
 // (vectorised), equal the one-particle hash chain, and the guard finds the first changed particle.
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -56,4 +58,23 @@ TEST(StateHash, GuardFindsTheFirstChangedParticle) {
                   "particle id " + std::to_string(ps.id[victim]) +
                       ": state changed between steps (hash mismatch)");
     }
+}
+
+// Issue 60: the seals' hash sum as a kernel (FieldHashKernel, what the GPU path's launchers run)
+// equals the CPU launcher's blocked sum, over wide and single-precision fields.
+TEST(StateHash, KernelSumEqualsTheBlockedSum) {
+    const std::size_t n = 5 * kHashBlock + 7;
+    auto ps = random_particles(n);
+    ps.enable(Field::rho), ps.enable(Field::nc); // narrow fields, stored as float
+    for (std::size_t i = 0; i < n; ++i) ps.narrow(Field::rho)[i] = float(0.5 + 1e-3 * double(i));
+    std::vector<Field> fields = ps.fields(kState);
+    fields.push_back(Field::rho), fields.push_back(Field::nc);
+    ASSERT_TRUE(ps.stored_single(Field::rho));
+    const std::uint64_t blocked = field_hash_sum<OmpLauncher>(ps, fields, n);
+    EXPECT_EQ(field_hash_sum<GpuHostLauncher>(ps, fields, n), blocked);
+    EXPECT_EQ(OmpLauncher::reduce(n, FieldHashKernel{ps.id.data(), hashed_fields(ps, fields)}),
+              blocked);
+    ps.narrow(Field::rho)[n / 2] = std::nextafter(ps.narrow(Field::rho)[n / 2], 1.0f);
+    EXPECT_NE(field_hash_sum<GpuHostLauncher>(ps, fields, n), blocked); // one bit: another sum
+    EXPECT_EQ(field_hash_sum<GpuHostLauncher>(ps, fields, n), field_hash_sum(ps, fields, n));
 }

@@ -1,6 +1,7 @@
 // Issue 59: the launchers reduce what a kernel returns with the kernel's own typed reduction
 // (sph/reduction.hpp), the same on every launcher and thread count: no value is encoded to fit
 // a minimum of doubles.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -78,4 +79,62 @@ TEST(Reductions, SameOnOneThread) {
 #else
     expect_typed_reductions<OmpLauncher>();
 #endif
+}
+
+namespace {
+// The tree of sph/reduction.hpp written out: each run of a level folded neighbours first (as
+// the CUDA block does it), levels until one value is left.
+double tree_sum_reference(std::vector<double> level) {
+    if (level.empty()) return 0.0;
+    while (level.size() > 1) {
+        std::vector<double> next;
+        for (std::size_t first = 0; first < level.size(); first += kTreeFan) {
+            std::vector<double> run(kTreeFan, 0.0);
+            for (std::size_t t = 0; t < kTreeFan && first + t < level.size(); ++t)
+                run[t] = level[first + t];
+            for (std::size_t s = 1; s < kTreeFan; s *= 2)
+                for (std::size_t t = 0; t < kTreeFan; t += 2 * s) run[t] += run[t + s];
+            next.push_back(run[0]);
+        }
+        level = next;
+    }
+    return level[0];
+}
+
+// Values whose sum rounds differently in every order: magnitudes over 12 decades.
+std::vector<double> rounding_values(std::size_t n) {
+    std::vector<double> v(n);
+    std::uint64_t s = 88172645463325252ull;
+    for (double& x : v) {
+        s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+        const double unit = double(s >> 11) * 0x1.0p-53;
+        x = (unit - 0.3) * std::pow(10.0, double(s % 13) - 6);
+    }
+    return v;
+}
+} // namespace
+
+// Issue 60: reduce_tree's sum has the tree's bits on every launcher and thread count (what the
+// diagnostics need to equal the CPU's on the device), and rounds like any order of the sum.
+TEST(Reductions, TreeSumHasTheSameBitsOnEveryLauncherAndThreadCount) {
+    for (std::size_t n : {std::size_t(0), std::size_t(1), kTreeFan - 1, kTreeFan, kTreeFan + 1,
+                          kTreeFan * kTreeFan + 5, std::size_t(100003)}) {
+        const auto v = rounding_values(n);
+        const Values<double, SumOf<double>> k{v.data()};
+        const double expected = tree_sum_reference(v);
+        EXPECT_EQ(OmpLauncher::reduce_tree(n, k), expected) << n;
+        EXPECT_EQ(GpuHostLauncher::reduce_tree(n, k), expected) << n;
+#ifdef _OPENMP
+        const int threads = omp_get_max_threads();
+        omp_set_num_threads(1);
+        EXPECT_EQ(OmpLauncher::reduce_tree(n, k), expected) << n;
+        omp_set_num_threads(threads);
+#endif
+        long double exact = 0;
+        double scale = 0;
+        for (double x : v) exact += x, scale += std::abs(x);
+        EXPECT_LE(std::abs(double(exact) - expected), 1e-14 * scale) << n;
+    }
+    const auto v = values(10007); // a minimum along the tree is the minimum
+    EXPECT_EQ(OmpLauncher::reduce_tree(v.size(), Values<double, MinOf<double>>{v.data()}), -500.25);
 }
