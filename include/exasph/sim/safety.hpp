@@ -214,7 +214,7 @@ class SafetyNet {
     std::int64_t step_ = 0; // the step in progress
     StepSeals<T, L> seals_;
     std::string late_change_; // what the seals found after the diagnostics, reported next step
-    StateGuard<T> guard_;
+    StateGuard<T, L> guard_;
     EnergyWatchdog watchdog_;
     StateStore<T> point_state_; // in memory, or on disk (--sdc-rollback-store disk)
     RunPoint<T> point_;

@@ -4,24 +4,33 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "exasph/particles/particle_set.hpp"
 #include "exasph/sim/state_hash.hpp"
+#include "exasph/sph/launch.hpp"
+#include "exasph/sph/state_check_kern.hpp"
 #include "exasph/util/box.hpp"
 
 namespace exasph {
 
 // Guards the owned particles' state between steps: seal() records a hash per particle at the end
 // of a step, check() (start of the next step, same order) finds any bit that changed in between,
-// and the physics invariants below catch corruption that happened before the seal.
-template <class T>
+// and the physics invariants below catch corruption that happened before the seal. The CPU
+// launcher works on blocks of particles a field at a time (vectorised); the GPU path's launchers
+// run the kernels of sph/state_check_kern.hpp where the particles are (the same findings).
+template <class T, class L = DefaultLauncher>
 class StateGuard {
   public:
     // Returns the sum of the hashes (state_hash_sum of the sealed state).
     std::uint64_t seal(const ParticleSet<T>& ps, std::size_t n) {
         fields_ = ps.fields(kState);
         hashes_.resize(n);
+        if constexpr (L::kBackend != Backend::openmp) {
+            sealed_ = true;
+            return L::reduce(n, GuardSealKernel{state_hash(ps), hashes_.data()});
+        }
         over_hash_blocks(ps, n, [&](std::size_t first, std::size_t count, const std::uint32_t* h) {
             std::copy_n(h, count, hashes_.begin() + std::ptrdiff_t(first));
             return n;
@@ -37,79 +46,90 @@ class StateGuard {
     // `u_positive`: u >= 0 is an invariant (ideal gas, not the Tait EOS that ignores u).
     std::string check(const ParticleSet<T>& ps, std::size_t n, const Box<T>& box, double dt,
                       bool press_ok, bool u_positive) const {
-        const auto nn = std::int64_t(n);
-        std::int64_t bad_hash = nn;
-        if (sealed_ && hashes_.size() == n)
-            bad_hash = std::int64_t(over_hash_blocks(
-                ps, n, [&](std::size_t first, std::size_t count, const std::uint32_t* h) {
-                    for (std::size_t k = 0; k < count; ++k)
-                        if (h[k] != hashes_[first + k]) return first + k;
-                    return n;
-                }));
+        const StateInvariants<T> inv = invariants(ps, box, dt, press_ok, u_positive);
+        const auto [bad_hash, bad_physics] = findings(ps, n, inv);
         std::string why;
-        std::vector<const T*> state; // the enabled state fields, looked up once
-        for (Field f : ps.fields(kState)) state.push_back(ps.data(f));
-        const auto bad_physics =
-            std::int64_t(first_violation(ps, state, n, box, dt, press_ok, u_positive));
-        if (bad_hash < nn)
+        if (bad_hash < n)
             why = "particle id " + std::to_string(ps.id[bad_hash]) +
                   ": state changed between steps (hash mismatch)";
-        if (bad_physics < nn)
+        if (bad_physics < n)
             why += std::string(why.empty() ? "" : "; ") + "particle id " +
                    std::to_string(ps.id[bad_physics]) + ": " +
-                   physics_violation(ps, state, bad_physics, box, dt, press_ok, u_positive);
+                   physics_violation(ps, inv, bad_physics);
         return why;
     }
 
-    // The first invariant particle i breaks (for the report), or "" if none.
-    // `state` holds the data of ps.fields(kState), in that order.
-    static std::string physics_violation(const ParticleSet<T>& ps,
-                                         const std::vector<const T*>& state, std::size_t i,
-                                         const Box<T>& box, double dt, bool press_ok,
-                                         bool u_positive) {
-        for (std::size_t k = 0; k < state.size(); ++k)
-            if (!std::isfinite(state[k][i]))
-                return std::string(field_info(ps.fields(kState)[k]).name) + " is not finite";
-        if (!(ps[Field::m][i] > T(0))) return "m is not positive";
-        if (!(ps[Field::h][i] > T(0))) return "h is not positive";
-        if (u_positive && ps[Field::u][i] < T(0)) return "u is negative";
+    // The invariants of the state fields of ps (sph/state_check_kern.hpp).
+    static StateInvariants<T> invariants(const ParticleSet<T>& ps, const Box<T>& box, double dt,
+                                         bool press_ok, bool u_positive) {
+        StateInvariants<T> inv{};
+        for (Field f : ps.fields(kState)) inv.state[inv.count++] = ps.data(f);
+        inv.m = ps.data(Field::m), inv.h = ps.data(Field::h), inv.u = ps.data(Field::u);
         for (int d = 0; d < 3; ++d) {
-            const T x = ps[pos[d]][i];
-            if (x < box.lo[d] || x > box.hi[d]) return "position outside the box";
+            inv.x[d] = ps.data(pos[d]), inv.x_m1[d] = ps.data(prev[d]);
+            inv.v[d] = ps.data(vel[d]), inv.a[d] = ps.data(acc[d]);
         }
-        if (press_ok && !press_consistent(ps, i, box, dt)) return "x, x_m1, v, a disagree (Press)";
+        inv.box = box, inv.dt = dt, inv.press_ok = press_ok, inv.u_positive = u_positive;
+        return inv;
+    }
+
+    // The first invariant particle i breaks (for the report), or "" if none.
+    static std::string physics_violation(const ParticleSet<T>& ps, const StateInvariants<T>& inv,
+                                         std::size_t i) {
+        switch (inv.broken(ParticleIndex(i))) {
+        case Broken::not_finite:
+            for (Field f : ps.fields(kState))
+                if (!std::isfinite(ps[f][i]))
+                    return std::string(field_info(f).name) + " is not finite";
+            return "a state field is not finite";
+        case Broken::mass:
+            return "m is not positive";
+        case Broken::smoothing_length:
+            return "h is not positive";
+        case Broken::energy:
+            return "u is negative";
+        case Broken::box:
+            return "position outside the box";
+        case Broken::press:
+            return "x, x_m1, v, a disagree (Press)";
+        case Broken::none:
+            break;
+        }
         return "";
     }
 
   private:
-    // After a Press update (sph/integrator.hpp), x - x_m1 = dt (v - a dt / 2) up to round-off
-    // in each axis. A periodic wrap moves x and x_m1 together by the period, rounding both at the
-    // period's magnitude (which |x| does not show in a box [0, L)).
-    static bool press_consistent(const ParticleSet<T>& ps, std::size_t i, const Box<T>& box,
-                                 double dt) {
-        for (int d = 0; d < 3; ++d) {
-            const double period = box.periodic[d] ? double(box.hi[d] - box.lo[d]) : 0.0;
-            if (!press_axis_ok(ps[pos[d]][i], ps[prev[d]][i], ps[vel[d]][i], ps[acc[d]][i], period,
-                               dt))
-                return false;
+    // The first particle (n: none) whose hash changed since the seal, and the first that
+    // breaks an invariant.
+    std::pair<std::size_t, std::size_t> findings(const ParticleSet<T>& ps, std::size_t n,
+                                                 const StateInvariants<T>& inv) const {
+        const bool compare = sealed_ && hashes_.size() == n;
+        if constexpr (L::kBackend != Backend::openmp) {
+            const GuardFinding f = L::reduce(
+                n, GuardCheckKernel<T>{state_hash(ps), compare ? hashes_.data() : nullptr, inv});
+            return {f.changed.found() ? f.changed.index : n, f.broken.found() ? f.broken.index : n};
         }
-        return true;
+        std::size_t bad_hash = n;
+        if (compare)
+            bad_hash = over_hash_blocks(
+                ps, n, [&](std::size_t first, std::size_t count, const std::uint32_t* h) {
+                    for (std::size_t k = 0; k < count; ++k)
+                        if (h[k] != hashes_[first + k]) return first + k;
+                    return n;
+                });
+        return {bad_hash, first_violation(ps, inv, n)};
     }
-    static bool press_axis_ok(double x, double xm, double v, double a, double period, double dt) {
-        constexpr double eps = std::numeric_limits<T>::epsilon();
-        const double residual = std::abs((x - xm) - dt * (v - 0.5 * a * dt));
-        const double allowed =
-            16 * eps *
-            (std::abs(x) + std::abs(xm) + 2 * period + dt * (std::abs(v) + std::abs(a) * dt));
-        return residual <= allowed;
+    FieldHashKernel state_hash(const ParticleSet<T>& ps) const {
+        return {ps.id.data(), hashed_fields(ps, fields_)};
     }
 
     // The least index of a particle that breaks an invariant of physics_violation (n if none),
     // tested field by field over blocks of particles: loops over one or a few arrays that
     // vectorise (the test per particle over all its fields took ~1 % of a step).
-    static std::size_t first_violation(const ParticleSet<T>& ps, const std::vector<const T*>& state,
-                                       std::size_t n, const Box<T>& box, double dt, bool press_ok,
-                                       bool u_positive) {
+    static std::size_t first_violation(const ParticleSet<T>& ps, const StateInvariants<T>& inv,
+                                       std::size_t n) {
+        const Box<T>& box = inv.box;
+        const std::vector<const T*> state(inv.state, inv.state + inv.count);
         const auto blocks = std::int64_t((n + kHashBlock - 1) / kHashBlock);
         std::size_t least = n;
 #pragma omp parallel for schedule(static) reduction(min : least)
@@ -124,12 +144,12 @@ class StateGuard {
             for (const T* f : state) mark(f, [](T v) { return !(std::abs(v) <= kFiniteMax); });
             mark(ps[Field::m].data(), [](T v) { return !(v > T(0)); });
             mark(ps[Field::h].data(), [](T v) { return !(v > T(0)); });
-            if (u_positive) mark(ps[Field::u].data(), [](T v) { return v < T(0); });
+            if (inv.u_positive) mark(ps[Field::u].data(), [](T v) { return v < T(0); });
             for (int d = 0; d < 3; ++d) {
                 const T lo = box.lo[d], hi = box.hi[d];
                 mark(ps[pos[d]].data(), [=](T x) { return x < lo || x > hi; });
             }
-            if (press_ok) mark_press(ps, box, dt, first, count, bad);
+            if (inv.press_ok) mark_press(ps, box, inv.dt, first, count, bad);
             for (std::size_t k = 0; k < count; ++k)
                 if (bad[k]) {
                     least = std::min(least, first + k);
@@ -146,10 +166,11 @@ class StateGuard {
             const double period = box.periodic[d] ? double(box.hi[d] - box.lo[d]) : 0.0;
 #pragma omp simd
             for (std::size_t k = 0; k < count; ++k)
-                bad[k] |= !press_axis_ok(x[k], xm[k], v[k], a[k], period, dt);
+                bad[k] |= !press_axis_ok(x[k], xm[k], v[k], a[k], period, dt, kEps);
         }
     }
     static constexpr T kFiniteMax = std::numeric_limits<T>::max();
+    static constexpr double kEps = std::numeric_limits<T>::epsilon();
     static constexpr Field pos[3] = {Field::x, Field::y, Field::z};
     static constexpr Field prev[3] = {Field::x_m1, Field::y_m1, Field::z_m1};
     static constexpr Field vel[3] = {Field::vx, Field::vy, Field::vz};
@@ -182,7 +203,7 @@ class StateGuard {
         return least;
     }
 
-    std::vector<std::uint32_t> hashes_;
+    FieldArray<std::uint32_t> hashes_; // where the particles are: the device seals them too
     bool sealed_ = false;
 };
 

@@ -9,6 +9,7 @@
 #include "exasph/sph/momentum_energy_kern.hpp"
 #include "exasph/sph/skin_kern.hpp"
 #include "exasph/sph/softening_correction_kern.hpp"
+#include "exasph/sph/state_check_kern.hpp"
 #include "exasph/sph/stir_kern.hpp"
 #include "exasph/sph/update_kern.hpp"
 
@@ -77,9 +78,10 @@ struct PassKernels {
     using neighbours = decltype(join(typename F::neighbours{}, typename D::neighbours{}));
     using each = decltype(join(typename F::each{}, typename D::each{}));
     using each_of = decltype(join(typename F::each_of{}, typename D::each_of{}));
-    using reduce = decltype(join(typename F::reduce{}, typename D::reduce{},
-                                 KernelList<ValueKernel<T, MinOf<double>>,
-                                            ValueKernel<T, MaxOf<double>>, FieldHashKernel>{}));
+    using reduce =
+        decltype(join(typename F::reduce{}, typename D::reduce{},
+                      KernelList<ValueKernel<T, MinOf<double>>, ValueKernel<T, MaxOf<double>>,
+                                 FieldHashKernel, GuardSealKernel, GuardCheckKernel<T>>{}));
     using reduce_of = decltype(join(typename F::reduce_of{}, typename D::reduce_of{}));
     using reduce_tree = decltype(join(typename F::reduce_tree{}, typename D::reduce_tree{}));
 };

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -77,4 +79,30 @@ TEST(StateHash, KernelSumEqualsTheBlockedSum) {
     ps.narrow(Field::rho)[n / 2] = std::nextafter(ps.narrow(Field::rho)[n / 2], 1.0f);
     EXPECT_NE(field_hash_sum<GpuHostLauncher>(ps, fields, n), blocked); // one bit: another sum
     EXPECT_EQ(field_hash_sum<GpuHostLauncher>(ps, fields, n), field_hash_sum(ps, fields, n));
+}
+
+// Issue 60: the guard on the GPU path's launcher (the kernels of sph/state_check_kern.hpp) seals
+// the same sum and reports what the CPU launcher's blocked checks report.
+TEST(StateHash, GuardKernelsReportWhatTheBlockedChecksReport) {
+    const std::size_t n = 3 * kHashBlock + 11;
+    auto ps = random_particles(n);
+    Box<double> box;
+    StateGuard<double> cpu;
+    StateGuard<double, GpuHostLauncher> gpu;
+    EXPECT_EQ(gpu.seal(ps, n), cpu.seal(ps, n));
+    const auto same = [&](bool press_ok) {
+        const std::string found = cpu.check(ps, n, box, 1e-3, press_ok, true);
+        EXPECT_EQ(gpu.check(ps, n, box, 1e-3, press_ok, true), found);
+        return found;
+    };
+    EXPECT_EQ(same(false), "");
+    EXPECT_NE(same(true), ""); // random x, x_m1, v, a: the Press relation does not hold
+    ps[Field::u][kHashBlock + 5] = -1.0; // a hash mismatch and a broken invariant at once
+    EXPECT_EQ(same(false), "particle id " + std::to_string(ps.id[kHashBlock + 5]) +
+                               ": state changed between steps (hash mismatch); particle id " +
+                               std::to_string(ps.id[kHashBlock + 5]) + ": u is negative");
+    ps[Field::vy][7] = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_NE(same(false).find(": vy is not finite"), std::string::npos);
+    ps[Field::z][3] = 2.0;
+    EXPECT_NE(same(false).find(": position outside the box"), std::string::npos);
 }
