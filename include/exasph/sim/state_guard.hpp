@@ -63,7 +63,11 @@ class StateGuard {
     static StateInvariants<T> invariants(const ParticleSet<T>& ps, const Box<T>& box, double dt,
                                          bool press_ok, bool u_positive) {
         StateInvariants<T> inv{};
-        for (Field f : ps.fields(kState)) inv.state[inv.count++] = ps.data(f);
+        const std::vector<Field> state = ps.fields(kState);
+        if (state.size() > std::size_t(StateInvariants<T>::kMost))
+            throw Error("the state guard checks at most " +
+                        std::to_string(StateInvariants<T>::kMost) + " state fields");
+        for (Field f : state) inv.state[inv.count++] = ps.data(f);
         inv.m = ps.data(Field::m), inv.h = ps.data(Field::h), inv.u = ps.data(Field::u);
         for (int d = 0; d < 3; ++d) {
             inv.x[d] = ps.data(pos[d]), inv.x_m1[d] = ps.data(prev[d]);
