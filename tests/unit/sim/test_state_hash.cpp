@@ -96,7 +96,7 @@ TEST(StateHash, GuardKernelsReportWhatTheBlockedChecksReport) {
         return found;
     };
     EXPECT_EQ(same(false), "");
-    EXPECT_NE(same(true), ""); // random x, x_m1, v, a: the Press relation does not hold
+    EXPECT_NE(same(true), "");           // random x, x_m1, v, a: the Press relation does not hold
     ps[Field::u][kHashBlock + 5] = -1.0; // a hash mismatch and a broken invariant at once
     EXPECT_EQ(same(false), "particle id " + std::to_string(ps.id[kHashBlock + 5]) +
                                ": state changed between steps (hash mismatch); particle id " +
